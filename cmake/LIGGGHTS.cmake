@@ -1,0 +1,10 @@
+# LIGGGHTS 3.8.0 from Debian (libliggghts-dev): headers in /usr/include/liggghts, libliggghts.so.
+find_path(LIGGGHTS_INCLUDE_DIR lammps.h PATHS /usr/include/liggghts NO_DEFAULT_PATH)
+find_library(LIGGGHTS_LIBRARY liggghts)
+find_program(LIGGGHTS_EXECUTABLE liggghts)
+if(NOT LIGGGHTS_INCLUDE_DIR OR NOT LIGGGHTS_LIBRARY)
+  message(FATAL_ERROR "LIGGGHTS not found: run scripts/install-deps.sh (Debian package libliggghts-dev)")
+endif()
+add_library(mixflow_liggghts INTERFACE)
+target_include_directories(mixflow_liggghts SYSTEM INTERFACE ${LIGGGHTS_INCLUDE_DIR})
+target_link_libraries(mixflow_liggghts INTERFACE ${LIGGGHTS_LIBRARY} MPI::MPI_CXX)

@@ -1,0 +1,324 @@
+#include "DemDriver.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "ContactTimes.h"
+#include "LiggghtsCommands.h"
+#include "Observables.h"
+#include "Progress.h"
+#include "SampleFill.h"
+
+namespace mixflow::dem {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr double kG = 9.81;
+
+std::string fmt(double v, int precision = 10) {
+  std::ostringstream s;
+  s << std::setprecision(precision) << v;
+  return s.str();
+}
+
+// Particle centres (x, y, z) of all ranks, on rank 0.
+std::vector<std::array<double, 3>> gatherCentres(const ParticleView& p, MPI_Comm comm) {
+  std::vector<double> local;
+  local.reserve(3 * p.n);
+  for (int i = 0; i < p.n; ++i)
+    for (int k = 0; k < 3; ++k) local.push_back(p.x[i][k]);
+  const std::vector<double> all = gatherOnRoot(local, comm);
+  std::vector<std::array<double, 3>> c(all.size() / 3);
+  for (size_t i = 0; i < c.size(); ++i) c[i] = {all[3 * i], all[3 * i + 1], all[3 * i + 2]};
+  return c;
+}
+
+double meanKineticPerParticle(const Energies& e) {
+  return e.count > 0 ? e.kinetic() / static_cast<double>(e.count) : 0.0;
+}
+}  // namespace
+
+DemDriver::DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out)
+    : scene_(scene), comm_(comm), out_(out) {
+  MPI_Comm_rank(comm, &rank_);
+  outDir_ = (fs::path(scene.caseDir) / "postProcessing" / "dem").string();
+  const std::string demDir = (fs::path(scene.caseDir) / "dem").string();
+  if (rank_ == 0) {
+    fs::create_directories(outDir_);
+    fs::create_directories(demDir);
+    fs::create_directories(fs::path(scene.caseDir) / "VTK" / "particles");
+  }
+  MPI_Barrier(comm);
+  lig_ = std::make_unique<LiggghtsSession>(comm, demDir);
+  dt_ = scene.timeStepUsed();
+}
+
+DemDriver::~DemDriver() = default;
+
+double DemDriver::simTime() const { return (lig_->step() - step0_) * dt_; }
+
+SettleReport DemDriver::settle() {
+  const Scene& s = scene_;
+  const Fill fill = makeLooseFill(s);
+  const Box box = channelBox(s, fill.top);
+  const std::string dataFile = (fs::path(s.caseDir) / "dem" / "initial.data").string();
+  if (rank_ == 0) writeDataFile(dataFile, fill, s.particles, box);
+  MPI_Barrier(comm_);
+
+  if (rank_ == 0)
+    out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
+         << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
+         << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3)
+         << " T_R (limit " << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
+
+  lig_->commands(sceneSetupCommands(s, dataFile, dt_));
+  // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
+  // off while settling: a constant rolling torque chatters at rest and keeps the sample from settling.
+  lig_->commands(
+      materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+
+  const double m = s.particles.mass(), d = s.particles.diameter;
+  const double chunk = 0.02;
+  const long nChunk = std::max(1L, std::lround(chunk / dt_));
+  const double tFall = std::sqrt(2.0 * fill.top / kG);
+  Progress progress("settle", 0.0, s.settle.maxTime, out_);
+  double t = 0;
+  bool converged = false;
+  while (t < s.settle.maxTime) {
+    lig_->run(nChunk);
+    t += nChunk * dt_;
+    const Energies e = energies(lig_->particles(), kG, comm_);
+    if (!std::isfinite(e.kinetic()))
+      throw std::runtime_error("NaN in particle kinetic energy during settling at t = " + fmt(t) +
+                               " s: time step too large for the contact stiffness?");
+    const double keRatio = meanKineticPerParticle(e) / (m * kG * d);
+    if (rank_ == 0) progress.update(t, false, ", KE/(N m g d) = " + fmt(keRatio, 3));
+    if (t > tFall && keRatio < s.settle.kineticTolerance) {
+      converged = true;
+      break;
+    }
+  }
+  // Back to the real friction, and a short relaxation so the contacts carry it.
+  lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
+                                  s.particles.rollingFriction));
+  lig_->invalidateSetup();
+  const long nRelax = std::lround(s.settle.relaxTime / dt_);
+  lig_->run(nRelax);
+  t += nRelax * dt_;
+  SettleReport r = measureSample(t, converged);
+  if (rank_ == 0)
+    out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
+         << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
+         << "), sample solid fraction " << fmt(r.sampleFraction, 4) << " (target "
+         << s.sample.solidFraction << "), bulk fraction " << fmt(r.bulkFraction, 4) << std::endl;
+  return r;
+}
+
+SettleReport DemDriver::measureSample(double settleTime, bool converged) {
+  const Scene& s = scene_;
+  const auto centres = gatherCentres(lig_->particles(), comm_);
+  SettleReport r;
+  r.settleTime = settleTime;
+  r.converged = converged;
+  r.particles = static_cast<long>(centres.size());
+  double buf[3] = {0, 0, 0};
+  if (rank_ == 0) {
+    const double d = s.particles.diameter, rad = 0.5 * d;
+    const Profile top = depositProfile(centres, rad, s.sample.width, 2 * d, 2 * d,
+                                       s.sample.length, s.sample.solidFraction);
+    double h = 0;
+    int nb = 0;
+    for (size_t i = 0; i < top.x.size(); ++i)
+      if (top.x[i] < s.sample.length) h += top.hTop[i], ++nb;
+    h /= std::max(nb, 1);
+    const double lo = 2 * d, hi = h - 2 * d;
+    double vol = 0;
+    for (const auto& c : centres) vol += sphereSlabVolume(c[1], rad, lo, hi);
+    buf[0] = h;
+    buf[1] = r.particles * s.particles.volume() / (s.sample.length * s.sample.width * h);
+    buf[2] = hi > lo ? vol / (s.sample.length * s.sample.width * (hi - lo)) : 0.0;
+  }
+  MPI_Bcast(buf, 3, MPI_DOUBLE, 0, comm_);
+  r.settledHeight = buf[0];
+  r.sampleFraction = buf[1];
+  r.bulkFraction = buf[2];
+  return r;
+}
+
+long DemDriver::deleteLeavers(long& outlet, long& top) {
+  const ParticleView p = lig_->particles();
+  long local[2] = {0, 0}, total[2];
+  for (int i = 0; i < p.n; ++i) {
+    if (p.x[i][0] > scene_.channel.length)
+      ++local[0];
+    else if (p.x[i][1] > scene_.channel.height)
+      ++local[1];
+  }
+  MPI_Allreduce(local, total, 2, MPI_LONG, MPI_SUM, comm_);
+  if (total[0] > 0) lig_->command("delete_atoms region outletRegion compress no");
+  if (total[1] > 0) lig_->command("delete_atoms region topRegion compress no");
+  if (total[0] + total[1] > 0) lig_->invalidateSetup();
+  outlet += total[0];
+  top += total[1];
+  return total[0] + total[1];
+}
+
+void DemDriver::writeSnapshot(int index, double t) {
+  std::ostringstream name;
+  name << "VTK/particles/particles_" << std::setw(5) << std::setfill('0') << index << ".vtk";
+  const std::string path = (fs::path(scene_.caseDir) / name.str()).string();
+  lig_->command("write_dump all custom/vtk " + path +
+                " id type x y z vx vy vz fx fy fz omegax omegay omegaz radius");
+  if (rank_ != 0) return;
+  // ParaView's file-series index: one entry per snapshot with its simulated time.
+  static std::vector<std::pair<std::string, double>> series;
+  if (index == 0) series.clear();
+  series.emplace_back("particles/" + fs::path(path).filename().string(), t);
+  std::ofstream f(fs::path(scene_.caseDir) / "VTK" / "particles.vtk.series");
+  f << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";
+  for (size_t i = 0; i < series.size(); ++i)
+    f << "    { \"name\" : \"" << series[i].first << "\", \"time\" : " << fmt(series[i].second)
+      << " }" << (i + 1 < series.size() ? "," : "") << "\n";
+  f << "  ]\n}\n";
+}
+
+CollapseReport DemDriver::collapse() {
+  const Scene& s = scene_;
+  const double d = s.particles.diameter, rad = 0.5 * d, m = s.particles.mass();
+  const double periodicWidth = s.channel.sideWalls == "periodic" ? s.sample.width : 0.0;
+  step0_ = lig_->step();
+  lig_->command("unfix wGate");
+  lig_->invalidateSetup();
+
+  std::ofstream series;
+  if (rank_ == 0) {
+    series.open(fs::path(outDir_) / "timeSeries.csv");
+    series << "time_s,particles,deleted_outlet,deleted_top,lost,front_x_m,runout_m,"
+              "ke_translational_J,ke_rotational_J,pe_J\n";
+  }
+  CollapseReport rep;
+  long expected = 0;
+  auto sample = [&](double t) {
+    const ParticleView p = lig_->particles();
+    const Energies e = energies(p, kG, comm_);
+    if (!std::isfinite(e.kinetic()) || !std::isfinite(e.potential))
+      throw std::runtime_error("NaN in particle energies at t = " + fmt(t) +
+                               " s (outputs up to the previous sample are in " + outDir_ + ")");
+    if (expected == 0) expected = e.count;
+    rep.lost += expected - e.count;  // left the box between two deletion passes
+    expected = e.count;
+    rep.remaining = e.count;
+    const auto centres = gatherCentres(p, comm_);
+    if (rank_ == 0) {
+      rep.front = granularFront(centres, rad, s.dem.frontGapDiameters * d, periodicWidth);
+      rep.runout = rep.front - s.sample.length;
+      series << fmt(t) << ',' << e.count << ',' << rep.deletedOutlet << ',' << rep.deletedTop << ','
+             << rep.lost << ',' << fmt(rep.front) << ',' << fmt(rep.runout) << ','
+             << fmt(e.kineticTranslational) << ',' << fmt(e.kineticRotational) << ','
+             << fmt(e.potential) << '\n'
+             << std::flush;
+    }
+    return e;
+  };
+
+  sample(0.0);
+  int snap = 0;
+  writeSnapshot(snap++, 0.0);
+  double nextWrite = s.writeInterval;
+  bool profileDone = false;
+  Progress progress("dem " + s.name, 0.0, s.endTime, out_);
+  double t = 0;
+  rep.stopReason = "endTime";
+  while (t < s.endTime - 0.5 * dt_) {
+    const long n = std::max(1L, std::lround(std::min(s.dem.sampleInterval, s.endTime - t) / dt_));
+    lig_->run(n);
+    t = simTime();
+    const long before = expected;
+    const long gone = deleteLeavers(rep.deletedOutlet, rep.deletedTop);
+    expected = before - gone;
+    const Energies e = sample(t);
+    if (!profileDone && t >= s.dem.profileTime - 0.5 * dt_) {
+      profileDone = true;
+      const VelocityProfile vp = velocityProfile(lig_->particles(), s.dem.profileX, d,
+                                                 s.dem.profileBinDiameters * d, s.channel.height,
+                                                 comm_);
+      if (rank_ == 0) {
+        std::ofstream f(fs::path(outDir_) / "velocityProfile.csv");
+        f << "y_m,u_x_m_s,particles,x_section_m,time_s\n";
+        for (size_t j = 0; j < vp.y.size(); ++j)
+          f << fmt(vp.y[j]) << ',' << fmt(vp.u[j]) << ',' << vp.count[j] << ','
+            << s.dem.profileX << ',' << fmt(t) << '\n';
+      }
+    }
+    if (t >= nextWrite - 0.5 * dt_) {
+      writeSnapshot(snap++, t);
+      nextWrite += s.writeInterval;
+    }
+    if (rank_ == 0) progress.update(t);
+    if (s.dem.stopWhenArrested && t >= s.dem.arrestMinTime &&
+        meanKineticPerParticle(e) < s.dem.arrestKineticTolerance * m * kG * d) {
+      rep.stopReason = "arrested";
+      break;
+    }
+  }
+  rep.endTime = t;
+  if (rank_ == 0) progress.update(t, true);
+
+  const auto centres = gatherCentres(lig_->particles(), comm_);
+  if (rank_ == 0) {
+    const Profile prof = depositProfile(centres, rad, s.sample.width, d, 2 * d, s.channel.length,
+                                        s.sample.solidFraction);
+    std::ofstream f(fs::path(outDir_) / "depositProfile.csv");
+    f << "x_m,h_top_m,h_volume_m,time_s\n";
+    for (size_t i = 0; i < prof.x.size(); ++i)
+      f << fmt(prof.x[i]) << ',' << fmt(prof.hTop[i]) << ',' << fmt(prof.hVolume[i]) << ','
+        << fmt(t) << '\n';
+  }
+  MPI_Bcast(&rep.front, 1, MPI_DOUBLE, 0, comm_);
+  rep.runout = rep.front - s.sample.length;
+  return rep;
+}
+
+void DemDriver::writeSummary(const SettleReport& st, const CollapseReport& c) const {
+  if (rank_ != 0) return;
+  const Scene& s = scene_;
+  int ranks = 1;
+  MPI_Comm_size(comm_, &ranks);
+  std::ofstream f(fs::path(outDir_) / "summary.json");
+  f << "{\n"
+    << "  \"case\": \"" << s.name << "\",\n"
+    << "  \"ranks\": " << ranks << ",\n"
+    << "  \"sample\": {\"length_m\": " << s.sample.length << ", \"height_m\": " << s.sample.height
+    << ", \"width_m\": " << s.sample.width << ", \"aspect_ratio\": "
+    << fmt(s.sample.height / s.sample.length) << ", \"target_solid_fraction\": "
+    << s.sample.solidFraction << "},\n"
+    << "  \"settled\": {\"particles\": " << st.particles << ", \"height_m\": "
+    << fmt(st.settledHeight) << ", \"sample_solid_fraction\": " << fmt(st.sampleFraction)
+    << ", \"bulk_solid_fraction\": " << fmt(st.bulkFraction) << ", \"settle_time_s\": "
+    << fmt(st.settleTime) << ", \"converged\": " << (st.converged ? "true" : "false") << "},\n"
+    << "  \"young_modulus_pa\": " << fmt(s.youngModulusUsed()) << ",\n"
+    << "  \"wall_young_modulus_pa\": " << fmt(s.wallYoungModulusUsed()) << ",\n"
+    << "  \"young_modulus_factor\": " << fmt(s.dem.youngModulusFactor) << ",\n"
+    << "  \"time_step_s\": " << fmt(dt_) << ",\n"
+    << "  \"rayleigh_time_s\": " << fmt(s.rayleighTime()) << ",\n"
+    << "  \"rolling_model\": \"" << s.particles.rollingModel << "\",\n"
+    << "  \"side_walls\": \"" << s.channel.sideWalls << "\",\n"
+    << "  \"end_time_s\": " << fmt(c.endTime) << ",\n"
+    << "  \"stop_reason\": \"" << c.stopReason << "\",\n"
+    << "  \"front_x_m\": " << fmt(c.front) << ",\n"
+    << "  \"runout_m\": " << fmt(c.runout) << ",\n"
+    << "  \"normalised_runout\": " << fmt(c.runout / s.sample.length) << ",\n"
+    << "  \"particles_remaining\": " << c.remaining << ",\n"
+    << "  \"deleted_outlet\": " << c.deletedOutlet << ",\n"
+    << "  \"deleted_top\": " << c.deletedTop << ",\n"
+    << "  \"lost\": " << c.lost << "\n"
+    << "}\n";
+}
+
+}  // namespace mixflow::dem

@@ -1,0 +1,121 @@
+#include "LiggghtsCommands.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace mixflow::dem {
+
+namespace {
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+std::string contactModel(const ParticleMaterial& p) {
+  std::string m = "model hertz tangential history";
+  if (p.rollingModel != "off") m += " rolling_friction " + p.rollingModel;
+  return m;
+}
+
+std::string contactSettings(bool limitForce) {
+  return std::string("limitForce ") + (limitForce ? "on" : "off");
+}
+
+std::vector<std::string> materialCommands(const ParticleMaterial& p, double youngModulusFactor,
+                                          double particleFriction, double rollingFriction) {
+  const double eP = p.youngModulus * youngModulusFactor;
+  const double eW = p.wallYoungModulus * youngModulusFactor;
+  // Pair matrices are 2x2 in type order (1-1, 1-2, 2-1, 2-2); walls never touch each other.
+  auto pairMatrix = [](double pp, double pw) {
+    return "peratomtypepair 2 " + fmt(pp) + " " + fmt(pw) + " " + fmt(pw) + " " + fmt(pw);
+  };
+  std::vector<std::string> c = {
+      "fix m1 all property/global youngsModulus peratomtype " + fmt(eP) + " " + fmt(eW),
+      "fix m2 all property/global poissonsRatio peratomtype " + fmt(p.poisson) + " " +
+          fmt(p.poisson),
+      "fix m3 all property/global coefficientRestitution " +
+          pairMatrix(p.restitution, p.restitution),
+      "fix m4 all property/global coefficientFriction " + pairMatrix(particleFriction, p.wallFriction),
+  };
+  if (p.rollingModel != "off")
+    c.push_back("fix m5 all property/global coefficientRollingFriction " +
+                pairMatrix(rollingFriction, rollingFriction));
+  if (p.rollingModel == "epsd2" || p.rollingViscousDamping > 0)
+    c.push_back("fix m6 all property/global coefficientRollingViscousDamping " +
+                pairMatrix(p.rollingViscousDamping, p.rollingViscousDamping));
+  return c;
+}
+
+std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
+                        const std::string& plane, double position) {
+  return "fix " + id + " all wall/gran " + contactModel(p) + " primitive type " +
+         std::to_string(kWallType) + " " + plane + " " + fmt(position) + " " +
+         contactSettings(limitForce);
+}
+
+Box channelBox(const Scene& s, double fillTop) {
+  const double d = s.particles.diameter;
+  Box b;
+  // A margin beyond the outlet and the top keeps particles in the box until the next deletion pass.
+  b.xlo = -d;
+  b.xhi = s.channel.length + 0.5 * s.channel.length;
+  b.ylo = -d;
+  b.yhi = std::max(s.channel.height, fillTop) + 0.5 * s.channel.height;
+  const bool periodic = s.channel.sideWalls == "periodic";
+  b.zlo = periodic ? 0.0 : -d;
+  b.zhi = periodic ? s.sample.width : s.sample.width + d;
+  return b;
+}
+
+std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,
+                                            double timeStep) {
+  const bool periodic = s.channel.sideWalls == "periodic";
+  const double d = s.particles.diameter;
+  std::vector<std::string> c = {
+      "units si",
+      "atom_style granular",
+      "atom_modify map array",
+      std::string("boundary f f ") + (periodic ? "p" : "f"),
+      "newton off",
+      "communicate single vel yes",
+      "processors " + s.dem.processors,
+      "read_data " + dataFile,
+      "neighbor " + fmt(0.2 * d) + " bin",
+      "neigh_modify delay 0",
+  };
+  // LIGGGHTS refuses moduli above 1e9 Pa (or below 5e6 Pa) unless told the particles are that stiff.
+  const double eMax = std::max(s.youngModulusUsed(), s.wallYoungModulusUsed());
+  if (eMax > 1e9) c.push_back("hard_particles yes");
+  if (s.youngModulusUsed() < 5e6) c.push_back("soft_particles yes");
+  for (auto& m : materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
+                                   s.particles.rollingFriction))
+    c.push_back(m);
+  const ParticleMaterial& p = s.particles;
+  const bool lf = s.dem.limitForce;
+  c.push_back("pair_style gran " + contactModel(p) + " " + contactSettings(lf));
+  c.push_back("pair_coeff * *");
+  c.push_back("timestep " + fmt(timeStep));
+  c.push_back("fix gravi all gravity 9.81 vector 0.0 -1.0 0.0");
+  c.push_back(wallCommand("wBottom", p, lf, "yplane", 0.0));
+  c.push_back(wallCommand("wBack", p, lf, "xplane", 0.0));
+  if (!periodic) {
+    c.push_back(wallCommand("wSide0", p, lf, "zplane", 0.0));
+    c.push_back(wallCommand("wSide1", p, lf, "zplane", s.sample.width));
+  }
+  c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length));
+  c.push_back("fix integr all nve/sphere");
+  // Particles leave through the outlet and the top: deleted by region, counted by the driver.
+  c.push_back("region outletRegion block " + fmt(s.channel.length) + " INF INF INF INF INF units box");
+  c.push_back("region topRegion block INF " + fmt(s.channel.length) + " " + fmt(s.channel.height) +
+              " INF INF INF units box");
+  c.push_back("thermo_style custom step atoms ke");
+  c.push_back("thermo_modify lost ignore norm no");
+  c.push_back("compute_modify thermo_temp dynamic yes");
+  c.push_back("thermo 100000");
+  return c;
+}
+
+}  // namespace mixflow::dem

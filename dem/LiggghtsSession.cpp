@@ -1,0 +1,57 @@
+#include "LiggghtsSession.h"
+
+// LIGGGHTS headers
+#include <atom.h>
+#include <input.h>
+#include <lammps.h>
+#include <update.h>
+
+#include <stdexcept>
+
+namespace mixflow::dem {
+
+LiggghtsSession::LiggghtsSession(MPI_Comm comm, const std::string& logDir) : comm_(comm) {
+  MPI_Comm_rank(comm, &rank_);
+  const std::string log = logDir + "/log.liggghts", screen = logDir + "/screen.liggghts";
+  // "-screen none" crashes LIGGGHTS 3.8 in fix insert/pack; a file is safe.
+  std::vector<std::string> args = {"liggghts", "-log", log, "-screen", screen, "-echo", "none"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm);
+  if (rank_ == 0) script_.open(logDir + "/in.liggghts");
+}
+
+LiggghtsSession::~LiggghtsSession() { delete lmp_; }
+
+void LiggghtsSession::command(const std::string& line) {
+  if (rank_ == 0) script_ << line << '\n' << std::flush;
+  lmp_->input->one(line.c_str());
+}
+
+void LiggghtsSession::commands(const std::vector<std::string>& lines) {
+  for (const auto& l : lines) command(l);
+}
+
+void LiggghtsSession::run(long nSteps) {
+  if (nSteps <= 0) return;
+  command("run " + std::to_string(nSteps) + (needSetup_ ? " post no" : " pre no post no"));
+  needSetup_ = false;
+}
+
+ParticleView LiggghtsSession::particles() const {
+  LAMMPS_NS::Atom* a = lmp_->atom;
+  ParticleView p;
+  p.n = a->nlocal;
+  p.x = a->x;
+  p.v = a->v;
+  p.omega = a->omega;
+  p.radius = a->radius;
+  p.mass = a->rmass;
+  return p;
+}
+
+long LiggghtsSession::atomCount() const { return static_cast<long>(lmp_->atom->natoms); }
+long LiggghtsSession::step() const { return static_cast<long>(lmp_->update->ntimestep); }
+double LiggghtsSession::timeStep() const { return lmp_->update->dt; }
+
+}  // namespace mixflow::dem

@@ -1,0 +1,50 @@
+// One LIGGGHTS instance driven as a library: commands go through input->one() and are echoed into a
+// script file so that any run can be replayed with the plain `liggghts -in` binary.
+#pragma once
+
+#include <mpi.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Observables.h"
+
+namespace LAMMPS_NS {
+class LAMMPS;
+}
+
+namespace mixflow::dem {
+
+class LiggghtsSession {
+public:
+  // logDir receives log.liggghts, screen.liggghts and the replay script in.liggghts.
+  LiggghtsSession(MPI_Comm comm, const std::string& logDir);
+  ~LiggghtsSession();
+  LiggghtsSession(const LiggghtsSession&) = delete;
+  LiggghtsSession& operator=(const LiggghtsSession&) = delete;
+
+  void command(const std::string& line);
+  void commands(const std::vector<std::string>& lines);
+  // Advance nSteps; setup is skipped when nothing changed since the last run (faster chunks).
+  void run(long nSteps);
+  void invalidateSetup() { needSetup_ = true; }
+
+  ParticleView particles() const;
+  long atomCount() const;
+  long step() const;
+  double timeStep() const;
+  LAMMPS_NS::LAMMPS* lammps() { return lmp_; }
+  MPI_Comm comm() const { return comm_; }
+  int rank() const { return rank_; }
+
+private:
+  MPI_Comm comm_;
+  int rank_ = 0;
+  LAMMPS_NS::LAMMPS* lmp_ = nullptr;
+  std::ofstream script_;
+  bool needSetup_ = true;
+};
+
+}  // namespace mixflow::dem

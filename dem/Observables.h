@@ -1,0 +1,61 @@
+// Granular observables of a dam break (physics.md §5), computed from the particles each rank owns and
+// reduced over MPI. Functions on plain arrays so tests can feed them known configurations.
+#pragma once
+
+#include <mpi.h>
+
+#include <array>
+#include <vector>
+
+namespace mixflow::dem {
+
+// Read-only view of the particles a rank owns (LIGGGHTS per-atom arrays).
+struct ParticleView {
+  int n = 0;
+  double** x = nullptr;
+  double** v = nullptr;
+  double** omega = nullptr;
+  double* radius = nullptr;
+  double* mass = nullptr;
+};
+
+struct Energies {
+  double kineticTranslational = 0;
+  double kineticRotational = 0;
+  double potential = 0;  // m g y, datum at the floor y = 0
+  long count = 0;
+  double kinetic() const { return kineticTranslational + kineticRotational; }
+};
+
+Energies energies(const ParticleView& p, double gravity, MPI_Comm comm);
+
+// Values from every rank gathered on rank 0 (empty elsewhere).
+std::vector<double> gatherOnRoot(const std::vector<double>& local, MPI_Comm comm);
+
+// Front of the main mass (physics.md §5): particles are connected when their surface gap is at most
+// maxGap; the main mass is the largest connected cluster, and the front is its largest x plus r.
+// Detached particles (saltating or scattered ahead) never move the front. periodicWidth > 0 wraps z.
+double granularFront(const std::vector<std::array<double, 3>>& centres, double radius,
+                     double maxGap, double periodicWidth);
+
+// Deposit profile on x bins of width dx over [0, xmax): hTop = mean over z columns (width dz) of the
+// highest particle top in the column (0 for an empty column); hVolume = particle volume in the bin
+// divided by (packingFraction * W * dx).
+struct Profile {
+  std::vector<double> x, hTop, hVolume;
+};
+Profile depositProfile(const std::vector<std::array<double, 3>>& centres, double radius,
+                       double width, double dx, double dz, double xmax, double packingFraction);
+
+// Mean u_x of particles whose centre lies within |x - x0| <= halfWidth, on y bins of width dy.
+struct VelocityProfile {
+  std::vector<double> y, u;
+  std::vector<long> count;
+};
+VelocityProfile velocityProfile(const ParticleView& p, double x0, double halfWidth, double dy,
+                                double ymax, MPI_Comm comm);
+
+// Exact volume of a sphere (centre yc, radius r) between the planes y = a and y = b.
+double sphereSlabVolume(double yc, double r, double a, double b);
+
+}  // namespace mixflow::dem

@@ -1,0 +1,96 @@
+// The scene of a dam-break case, read from an OpenFOAM-style case directory:
+//   constant/sceneProperties  geometry (sample, channel), content, particle material
+//   system/demDict            DEM numerics (time step, softening, settling, outputs)
+//   system/controlDict        endTime, writeInterval (as for any OpenFOAM case)
+// Every entry is validated on reading; defaults are listed in docs/parameters.md.
+#pragma once
+
+#include <string>
+
+namespace mixflow::dem {
+
+struct SampleSpec {
+  double length = 0;  // L along x (m)
+  double height = 0;  // H along y (m)
+  double width = 0;   // W along z (m)
+  double solidFraction = 0.6056;
+};
+
+struct ChannelSpec {
+  double length = 0;              // x extent from the back wall (m); particles beyond are deleted
+  double height = 0;              // y extent (m); particles above are deleted
+  std::string sideWalls = "walls";  // walls (frictional) | periodic (an infinitely wide channel)
+};
+
+struct ParticleMaterial {
+  double diameter = 0.024;
+  double density = 2500;
+  double youngModulus = 70e9;       // particle-particle (paper value, before softening)
+  double wallYoungModulus = 700e9;  // wall material (paper value, before softening)
+  double poisson = 0.3;
+  double restitution = 0.7;
+  double friction = 0.7;
+  double wallFriction = 0.7;
+  double rollingFriction = 0.1;
+  std::string rollingModel = "cdt";  // cdt | epsd2 | off
+  double rollingViscousDamping = 0;  // epsd only
+  double radius() const { return 0.5 * diameter; }
+  double mass() const;
+  double volume() const;
+};
+
+struct SettleSpec {
+  double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
+  double maxTime = 3.0;       // s of simulated settling at most
+  double kineticTolerance = 1e-5;  // settled when mean KE per particle < tol * m g d
+  double fillSpacing = 1.15;  // lattice spacing of the initial loose fill, in diameters
+  double relaxTime = 0.05;    // s with the real friction before the gate opens
+  long seed = 12345;
+};
+
+struct DemSpec {
+  double youngModulusFactor = 1.0;  // softening: both moduli are multiplied by it (speed knob)
+  double timeStep = 0;              // 0 = auto: rayleighFraction * T_R
+  double rayleighFraction = 0.1;
+  double maxRayleighFraction = 0.2;  // a requested step above this fraction of T_R is refused
+  double maxHertzFraction = 0.1;     // ... or above this fraction of the fastest Hertz contact time
+  bool limitForce = true;            // LIGGGHTS hertz option: no attractive normal force
+  double sampleInterval = 0.01;      // s between time-series samples (and deletions at the outlet)
+  double frontGapDiameters = 0.5;    // surface gap (in d) that still connects a particle to the mass
+  double profileX = 0.8;             // velocity profile section (m)
+  double profileTime = 0.5;          // velocity profile time (s)
+  double profileBinDiameters = 1.0;
+  bool stopWhenArrested = true;
+  double arrestKineticTolerance = 1e-6;  // arrested when mean KE per particle < tol * m g d
+  double arrestMinTime = 0.3;            // never declare arrest before this time (s)
+  std::string processors = "* * *";      // LIGGGHTS processors grid
+};
+
+struct Scene {
+  std::string caseDir;
+  std::string name;
+  std::string content;  // particles | liquid | mixture
+  SampleSpec sample;
+  ChannelSpec channel;
+  ParticleMaterial particles;
+  SettleSpec settle;
+  DemSpec dem;
+  double endTime = 2.0;
+  double writeInterval = 0.05;
+
+  static Scene read(const std::string& caseDir);
+
+  // Derived quantities (all with the softened moduli).
+  double youngModulusUsed() const { return particles.youngModulus * dem.youngModulusFactor; }
+  double wallYoungModulusUsed() const {
+    return particles.wallYoungModulus * dem.youngModulusFactor;
+  }
+  double rayleighTime() const;
+  double maxImpactSpeed() const;  // sqrt(2 g H): free fall over the sample height
+  double hertzTimeMin() const;    // shortest elastic Hertz contact (particle-particle or -wall)
+  double stableTimeStepLimit() const;
+  double timeStepUsed() const;  // validated: throws InputError above the limit
+  long particleCount() const;   // N = phi L H W / Vp
+};
+
+}  // namespace mixflow::dem

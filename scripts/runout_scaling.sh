@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Runs the dry columns P-I-I ... P-I-V (copies of cases/ in WORK, default /tmp/mixflow-runout) and fits
+# (l_inf - L)/L = lambda a^alpha into results/runout_scaling/. Usage: scripts/runout_scaling.sh [RANKS]
+# Finished scenes (postProcessing/dem/summary.json present) are not run again.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+ranks=${1:-1}
+work=${WORK:-/tmp/mixflow-runout}
+bash "$root/scripts/build.sh"
+export PATH="${MIXFLOW_BUILD:-$root/build}/bin:$PATH"
+mkdir -p "$work"
+for c in P-I-I P-I-II P-I-III P-I-IV P-I-V; do
+  if [ ! -f "$work/$c/postProcessing/dem/summary.json" ]; then
+    rm -rf "${work:?}/$c" && cp -r "$root/cases/$c" "$work/$c"
+    # The copy's Allrun finds RunFunctions relative to the repository.
+    sed -i "s|\$(dirname \"\$0\")/../../scripts/RunFunctions|$root/scripts/RunFunctions|" "$work/$c/Allrun"
+    (cd "$work/$c" && ./Allrun "$ranks" > log.Allrun 2>&1) || { echo "scene $c failed: see $work/$c/log.Allrun" >&2; exit 1; }
+  fi
+  echo "$c done"
+done
+/usr/bin/python3 "$root/scripts/runout_fit.py" "$work" "$root/results/runout_scaling" \
+  "scripts/runout_scaling.sh $ranks"

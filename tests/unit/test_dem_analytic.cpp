@@ -1,0 +1,92 @@
+// Unit tests of the DEM closed forms and observables on configurations with known answers.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+
+#include "ContactTimes.h"
+#include "Observables.h"
+
+using namespace mixflow::dem;
+
+TEST(ContactTimes, RayleighTimeOfPaperParticle) {
+  // physics.md §2: T_R ~ 1.2e-5 s for 70 GPa; LIGGGHTS' check/timestep/gran reports 1.2412e-5 s.
+  EXPECT_NEAR(rayleighTime(0.012, 2500, 70e9, 0.3), 1.2412e-5, 1e-8);
+}
+
+TEST(ContactTimes, HertzImpactMatchesReferenceTable) {
+  // shared/reference/hertz_impact_analytic.csv, Chung & Ooi test 1 glass: E*=2.5e10, R*=0.005,
+  // m*=0.0058643, v=20: delta_max 274.1127 um, F_max 10.6969 kN, t_c 40.3357 us.
+  const double e = effectiveModulus(48e9, 0.2, 48e9, 0.2);
+  EXPECT_NEAR(e, 2.5e10, 1e6);
+  EXPECT_NEAR(hertzMaxOverlap(e, 0.005, 0.0058643, 20) * 1e6, 274.1127, 0.01);
+  EXPECT_NEAR(hertzPeakForce(e, 0.005, 0.0058643, 20) / 1e3, 10.6969, 0.001);
+  EXPECT_NEAR(hertzContactTime(e, 0.005, 0.0058643, 20) * 1e6, 40.3357, 0.005);
+  // A rigid wall adds no compliance.
+  EXPECT_NEAR(effectiveModulus(70e9, 0.3, INFINITY, 0.3), 70e9 / (1 - 0.09), 1.0);
+}
+
+TEST(Observables, SphereSlabVolumeIsExact) {
+  const double r = 0.5, v = 4.0 / 3.0 * kPi * r * r * r;
+  EXPECT_NEAR(sphereSlabVolume(0, r, -1, 1), v, 1e-15);
+  EXPECT_NEAR(sphereSlabVolume(0, r, 0, 1), 0.5 * v, 1e-15);
+  EXPECT_NEAR(sphereSlabVolume(0, r, -1, 0) + sphereSlabVolume(0, r, 0, 0.2) +
+                  sphereSlabVolume(0, r, 0.2, 3),
+              v, 1e-15);
+  EXPECT_EQ(sphereSlabVolume(2, r, -1, 1), 0.0);
+}
+
+TEST(Observables, FrontIgnoresDetachedParticles) {
+  // A touching row of 10 particles from x = 0.5 to 9.5 (d = 1), one grain 0.3 d ahead (attached),
+  // and a detached one 3 d further: the front is the attached grain's edge.
+  std::vector<std::array<double, 3>> c;
+  for (int i = 0; i < 10; ++i) c.push_back({0.5 + i, 0.5, 0.5});
+  c.push_back({10.8, 0.5, 0.5});
+  c.push_back({15.0, 0.5, 0.5});
+  EXPECT_NEAR(granularFront(c, 0.5, 0.5, 0.0), 11.3, 1e-12);
+  // With a zero gap tolerance the 0.3 d gap detaches it.
+  EXPECT_NEAR(granularFront(c, 0.5, 0.0, 0.0), 10.0, 1e-12);
+}
+
+TEST(Observables, FrontConnectsAcrossPeriodicBoundary) {
+  // Two clusters that only touch through the periodic z boundary (width 4) form one mass.
+  std::vector<std::array<double, 3>> c = {{0.5, 0.5, 0.5}, {1.5, 0.5, 0.5}, {2.0, 0.5, 3.6}};
+  EXPECT_NEAR(granularFront(c, 0.5, 0.1, 4.0), 2.5, 1e-12);
+  EXPECT_NEAR(granularFront(c, 0.5, 0.1, 0.0), 2.0, 1e-12);  // not periodic: (2, z=3.6) is alone
+}
+
+TEST(Observables, DepositProfileOfAFullLayer) {
+  // One full layer of particles (d = 1) on a 4 x 2 floor: hTop = 1 everywhere.
+  std::vector<std::array<double, 3>> c;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 2; ++k) c.push_back({0.5 + i, 0.5, 0.5 + k});
+  const Profile p = depositProfile(c, 0.5, 2.0, 1.0, 1.0, 4.0, 0.5);
+  ASSERT_EQ(p.x.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(p.hTop[i], 1.0);
+    EXPECT_NEAR(p.hVolume[i], 2 * kPi / 6.0 / (0.5 * 2.0 * 1.0), 1e-12);
+  }
+}
+
+TEST(Observables, EnergiesOfKnownParticles) {
+  double x0[3] = {0, 2, 0}, v0[3] = {3, 0, 4}, w0[3] = {0, 0, 10};
+  double* x[1] = {x0};
+  double* v[1] = {v0};
+  double* w[1] = {w0};
+  double r[1] = {0.1}, m[1] = {2.0};
+  ParticleView p;
+  p.n = 1, p.x = x, p.v = v, p.omega = w, p.radius = r, p.mass = m;
+  const Energies e = energies(p, 9.81, MPI_COMM_WORLD);
+  EXPECT_DOUBLE_EQ(e.kineticTranslational, 25.0);
+  EXPECT_DOUBLE_EQ(e.kineticRotational, 0.5 * 0.4 * 2.0 * 0.01 * 100);
+  EXPECT_DOUBLE_EQ(e.potential, 2.0 * 9.81 * 2);
+  EXPECT_EQ(e.count, 1);
+}
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}
