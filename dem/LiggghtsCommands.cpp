@@ -56,6 +56,20 @@ std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool l
          contactSettings(limitForce);
 }
 
+std::vector<std::string> contactCommands(const ParticleMaterial& p, double youngModulusFactor,
+                                         bool limitForce) {
+  std::vector<std::string> c;
+  // LIGGGHTS refuses moduli above 1e9 Pa (or below 5e6 Pa) unless told the particles are that stiff.
+  const double eP = p.youngModulus * youngModulusFactor, eW = p.wallYoungModulus * youngModulusFactor;
+  if (std::max(eP, eW) > 1e9) c.push_back("hard_particles yes");
+  if (eP < 5e6) c.push_back("soft_particles yes");
+  for (auto& m : materialCommands(p, youngModulusFactor, p.friction, p.rollingFriction))
+    c.push_back(m);
+  c.push_back("pair_style gran " + contactModel(p) + " " + contactSettings(limitForce));
+  c.push_back("pair_coeff * *");
+  return c;
+}
+
 Box channelBox(const Scene& s, double fillTop) {
   const double d = s.particles.diameter;
   Box b;
@@ -86,17 +100,10 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
       "neighbor " + fmt(0.2 * d) + " bin",
       "neigh_modify delay 0",
   };
-  // LIGGGHTS refuses moduli above 1e9 Pa (or below 5e6 Pa) unless told the particles are that stiff.
-  const double eMax = std::max(s.youngModulusUsed(), s.wallYoungModulusUsed());
-  if (eMax > 1e9) c.push_back("hard_particles yes");
-  if (s.youngModulusUsed() < 5e6) c.push_back("soft_particles yes");
-  for (auto& m : materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
-                                   s.particles.rollingFriction))
-    c.push_back(m);
+  for (auto& line : contactCommands(s.particles, s.dem.youngModulusFactor, s.dem.limitForce))
+    c.push_back(line);
   const ParticleMaterial& p = s.particles;
   const bool lf = s.dem.limitForce;
-  c.push_back("pair_style gran " + contactModel(p) + " " + contactSettings(lf));
-  c.push_back("pair_coeff * *");
   c.push_back("timestep " + fmt(timeStep));
   c.push_back("fix gravi all gravity 9.81 vector 0.0 -1.0 0.0");
   c.push_back(wallCommand("wBottom", p, lf, "yplane", 0.0));

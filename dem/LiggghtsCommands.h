@@ -23,6 +23,10 @@ std::string contactSettings(bool limitForce);
 std::vector<std::string> materialCommands(const ParticleMaterial& p, double youngModulusFactor,
                                           double particleFriction, double rollingFriction);
 
+// Stiffness switches, materials, pair style and coefficients: the complete particle contact law.
+std::vector<std::string> contactCommands(const ParticleMaterial& p, double youngModulusFactor,
+                                         bool limitForce);
+
 // One primitive wall of the wall material: e.g. wallCommand("wBack", p, true, "xplane", 0.0).
 std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
                         const std::string& plane, double position);
