@@ -38,7 +38,7 @@ std::string Range::str() const {
 
 // Tokeniser + recursive-descent parser for the dictionary grammar above.
 class DictionaryParser {
-public:
+ public:
   DictionaryParser(const std::string& text, const std::string& file) : s_(text), file_(file) {}
 
   void parseInto(Dictionary& d, bool topLevel) {
@@ -75,7 +75,7 @@ public:
     }
   }
 
-private:
+ private:
   [[noreturn]] void error(const std::string& what) const {
     throw InputError(file_ + ":" + std::to_string(line_) + ": " + what);
   }
@@ -247,10 +247,12 @@ static std::string joinWords(const std::vector<std::string>& w) {
   return s;
 }
 
-std::string Dictionary::word(const std::string& key, const std::vector<std::string>& allowed) const {
+std::string Dictionary::word(const std::string& key,
+                             const std::vector<std::string>& allowed) const {
   const Entry& e = entry(key);
   if (e.dict || e.tokens.size() != 1)
-    fail(key, "must be one word of: " + joinWords(allowed) + (e.dict ? "" : "; found '" + text(key) + "' (a missing ';'?)"));
+    fail(key, "must be one word of: " + joinWords(allowed) +
+                  (e.dict ? "" : "; found '" + text(key) + "' (a missing ';'?)"));
   const std::string& w = e.tokens[0];
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), w) == allowed.end())
     fail(key, "'" + w + "' is not allowed; choose one of: " + joinWords(allowed));

@@ -1,7 +1,7 @@
 // Reader for OpenFOAM-style dictionaries (the convention users of this simulator already know):
 //   key value;   key v1 v2 v3;   key (1 2 3);   name { ... }   // and /* */ comments.
-// Every lookup validates its value and throws InputError with the file, the dotted entry path and the
-// allowed range, so bad input stops before any run starts.
+// Every lookup validates its value and throws InputError with the file, the dotted entry path and
+// the allowed range, so bad input stops before any run starts.
 #pragma once
 
 #include <map>
@@ -13,7 +13,7 @@
 namespace mixflow {
 
 class InputError : public std::runtime_error {
-public:
+ public:
   using std::runtime_error::runtime_error;
 };
 
@@ -34,7 +34,7 @@ struct Range {
 };
 
 class Dictionary {
-public:
+ public:
   static Dictionary readFile(const std::string& path);
   static Dictionary parse(const std::string& text, const std::string& fileName);
 
@@ -63,7 +63,7 @@ public:
   std::string where(const std::string& key) const;  // "file: entry 'a.b.key' (line N)"
   [[noreturn]] void fail(const std::string& key, const std::string& why) const;
 
-private:
+ private:
   struct Entry {
     std::vector<std::string> tokens;
     std::shared_ptr<Dictionary> dict;

@@ -8,7 +8,7 @@
 namespace mixflow {
 
 class Progress {
-public:
+ public:
   // Prints at most every minInterval wall seconds (and always on force / at the end).
   Progress(std::string label, double startTime, double endTime, std::ostream& out,
            double minInterval = 5.0);
@@ -17,7 +17,7 @@ public:
 
   static std::string hms(double seconds);
 
-private:
+ private:
   std::string label_;
   double start_, end_;
   std::ostream& out_;

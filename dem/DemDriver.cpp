@@ -74,14 +74,14 @@ SettleReport DemDriver::settle() {
   if (rank_ == 0)
     out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
          << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
-         << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3)
-         << " T_R (limit " << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
+         << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
+         << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
 
   lig_->commands(sceneSetupCommands(s, dataFile, dt_));
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
-  // off while settling: a constant rolling torque chatters at rest and keeps the sample from settling.
-  lig_->commands(
-      materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+  // off while settling: a constant rolling torque chatters at rest and keeps the sample from
+  // settling.
+  lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
 
   const double m = s.particles.mass(), d = s.particles.diameter;
   const double chunk = 0.02;
@@ -130,8 +130,8 @@ SettleReport DemDriver::measureSample(double settleTime, bool converged) {
   double buf[3] = {0, 0, 0};
   if (rank_ == 0) {
     const double d = s.particles.diameter, rad = 0.5 * d;
-    const Profile top = depositProfile(centres, rad, s.sample.width, 2 * d, 2 * d,
-                                       s.sample.length, s.sample.solidFraction);
+    const Profile top = depositProfile(centres, rad, s.sample.width, 2 * d, 2 * d, s.sample.length,
+                                       s.sample.solidFraction);
     double h = 0;
     int nb = 0;
     for (size_t i = 0; i < top.x.size(); ++i)
@@ -169,22 +169,25 @@ long DemDriver::deleteLeavers(long& outlet, long& top) {
   return total[0] + total[1];
 }
 
-void DemDriver::writeSnapshot(int index, double t) {
-  std::ostringstream name;
-  name << "VTK/particles/particles_" << std::setw(5) << std::setfill('0') << index << ".vtk";
-  const std::string path = (fs::path(scene_.caseDir) / name.str()).string();
-  lig_->command("write_dump all custom/vtk " + path +
-                " id type x y z vx vy vz fx fy fz omegax omegay omegaz radius");
+void DemDriver::startSnapshots() {
+  // A periodic dump (not write_dump): LIGGGHTS tallies the per-atom contact virial only on steps a
+  // dump has announced. Files are particles_<step>.vtk; step 0 is the gate opening.
+  snapshotEvery_ = std::max(1L, std::lround(scene_.writeInterval / dt_));
+  lig_->command("dump snap all custom/vtk " + std::to_string(snapshotEvery_) + " " +
+                (fs::path(scene_.caseDir) / "VTK" / "particles" / "particles_*.vtk").string() +
+                " id type x y z vx vy vz fx fy fz omegax omegay omegaz radius mass c_pstress[1] "
+                "c_pstress[2] c_pstress[3] c_pstress[4] c_pstress[5] c_pstress[6]");
+}
+
+void DemDriver::indexSnapshots(long lastStep) const {
   if (rank_ != 0) return;
-  // ParaView's file-series index: one entry per snapshot with its simulated time.
-  static std::vector<std::pair<std::string, double>> series;
-  if (index == 0) series.clear();
-  series.emplace_back("particles/" + fs::path(path).filename().string(), t);
+  // ParaView's file-series index of the snapshots written so far, with their simulated times.
   std::ofstream f(fs::path(scene_.caseDir) / "VTK" / "particles.vtk.series");
   f << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";
-  for (size_t i = 0; i < series.size(); ++i)
-    f << "    { \"name\" : \"" << series[i].first << "\", \"time\" : " << fmt(series[i].second)
-      << " }" << (i + 1 < series.size() ? "," : "") << "\n";
+  for (long step = 0; step <= lastStep; step += snapshotEvery_)
+    f << "    { \"name\" : \"particles/particles_" << step
+      << ".vtk\", \"time\" : " << fmt(step * dt_) << " }"
+      << (step + snapshotEvery_ <= lastStep ? "," : "") << "\n";
   f << "  ]\n}\n";
 }
 
@@ -192,6 +195,8 @@ CollapseReport DemDriver::collapse() {
   const Scene& s = scene_;
   const double d = s.particles.diameter, rad = 0.5 * d, m = s.particles.mass();
   const double periodicWidth = s.channel.sideWalls == "periodic" ? s.sample.width : 0.0;
+  // t = 0 at the gate opening is step 0, so periodic dumps fall on multiples of writeInterval.
+  lig_->command("reset_timestep 0");
   step0_ = lig_->step();
   lig_->command("unfix wGate");
   lig_->invalidateSetup();
@@ -228,9 +233,7 @@ CollapseReport DemDriver::collapse() {
   };
 
   sample(0.0);
-  int snap = 0;
-  writeSnapshot(snap++, 0.0);
-  double nextWrite = s.writeInterval;
+  startSnapshots();
   bool profileDone = false;
   Progress progress("dem " + s.name, 0.0, s.endTime, out_);
   double t = 0;
@@ -245,21 +248,18 @@ CollapseReport DemDriver::collapse() {
     const Energies e = sample(t);
     if (!profileDone && t >= s.dem.profileTime - 0.5 * dt_) {
       profileDone = true;
-      const VelocityProfile vp = velocityProfile(lig_->particles(), s.dem.profileX, d,
-                                                 s.dem.profileBinDiameters * d, s.channel.height,
-                                                 comm_);
+      const VelocityProfile vp =
+          velocityProfile(lig_->particles(), s.dem.profileX, d, s.dem.profileBinDiameters * d,
+                          s.channel.height, comm_);
       if (rank_ == 0) {
         std::ofstream f(fs::path(outDir_) / "velocityProfile.csv");
         f << "y_m,u_x_m_s,particles,x_section_m,time_s\n";
         for (size_t j = 0; j < vp.y.size(); ++j)
-          f << fmt(vp.y[j]) << ',' << fmt(vp.u[j]) << ',' << vp.count[j] << ','
-            << s.dem.profileX << ',' << fmt(t) << '\n';
+          f << fmt(vp.y[j]) << ',' << fmt(vp.u[j]) << ',' << vp.count[j] << ',' << s.dem.profileX
+            << ',' << fmt(t) << '\n';
       }
     }
-    if (t >= nextWrite - 0.5 * dt_) {
-      writeSnapshot(snap++, t);
-      nextWrite += s.writeInterval;
-    }
+    indexSnapshots(lig_->step() - step0_);
     if (rank_ == 0) progress.update(t);
     if (s.dem.stopWhenArrested && t >= s.dem.arrestMinTime &&
         meanKineticPerParticle(e) < s.dem.arrestKineticTolerance * m * kG * d) {
@@ -295,13 +295,15 @@ void DemDriver::writeSummary(const SettleReport& st, const CollapseReport& c) co
     << "  \"case\": \"" << s.name << "\",\n"
     << "  \"ranks\": " << ranks << ",\n"
     << "  \"sample\": {\"length_m\": " << s.sample.length << ", \"height_m\": " << s.sample.height
-    << ", \"width_m\": " << s.sample.width << ", \"aspect_ratio\": "
-    << fmt(s.sample.height / s.sample.length) << ", \"target_solid_fraction\": "
-    << s.sample.solidFraction << "},\n"
-    << "  \"settled\": {\"particles\": " << st.particles << ", \"height_m\": "
-    << fmt(st.settledHeight) << ", \"sample_solid_fraction\": " << fmt(st.sampleFraction)
-    << ", \"bulk_solid_fraction\": " << fmt(st.bulkFraction) << ", \"settle_time_s\": "
-    << fmt(st.settleTime) << ", \"converged\": " << (st.converged ? "true" : "false") << "},\n"
+    << ", \"width_m\": " << s.sample.width
+    << ", \"aspect_ratio\": " << fmt(s.sample.height / s.sample.length)
+    << ", \"target_solid_fraction\": " << s.sample.solidFraction << "},\n"
+    << "  \"settled\": {\"particles\": " << st.particles
+    << ", \"height_m\": " << fmt(st.settledHeight)
+    << ", \"sample_solid_fraction\": " << fmt(st.sampleFraction)
+    << ", \"bulk_solid_fraction\": " << fmt(st.bulkFraction)
+    << ", \"settle_time_s\": " << fmt(st.settleTime)
+    << ", \"converged\": " << (st.converged ? "true" : "false") << "},\n"
     << "  \"young_modulus_pa\": " << fmt(s.youngModulusUsed()) << ",\n"
     << "  \"wall_young_modulus_pa\": " << fmt(s.wallYoungModulusUsed()) << ",\n"
     << "  \"young_modulus_factor\": " << fmt(s.dem.youngModulusFactor) << ",\n"

@@ -16,10 +16,10 @@ namespace mixflow::dem {
 
 struct SettleReport {
   long particles = 0;
-  double settledHeight = 0;     // mean over (x,z) columns of the highest particle top (m)
-  double sampleFraction = 0;    // N Vp / (L W settledHeight)
-  double bulkFraction = 0;      // measured in the interior slab 2d <= y <= settledHeight - 2d
-  double settleTime = 0;        // simulated settling time (s)
+  double settledHeight = 0;   // mean over (x,z) columns of the highest particle top (m)
+  double sampleFraction = 0;  // N Vp / (L W settledHeight)
+  double bulkFraction = 0;    // measured in the interior slab 2d <= y <= settledHeight - 2d
+  double settleTime = 0;      // simulated settling time (s)
   bool converged = false;
 };
 
@@ -32,7 +32,7 @@ struct CollapseReport {
 };
 
 class DemDriver {
-public:
+ public:
   DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out);
   ~DemDriver();
 
@@ -42,10 +42,11 @@ public:
   LiggghtsSession& session() { return *lig_; }
   const std::string& outputDir() const { return outDir_; }
 
-private:
+ private:
   double simTime() const;
   long deleteLeavers(long& outlet, long& top);
-  void writeSnapshot(int index, double t);
+  void startSnapshots();
+  void indexSnapshots(long lastStep) const;
   SettleReport measureSample(double settleTime, bool converged);
 
   const Scene& scene_;
@@ -56,6 +57,7 @@ private:
   std::unique_ptr<LiggghtsSession> lig_;
   double dt_ = 0;
   long step0_ = 0;  // step at which the gate opened (t = 0)
+  long snapshotEvery_ = 1;
 };
 
 }  // namespace mixflow::dem

@@ -38,7 +38,8 @@ std::vector<std::string> materialCommands(const ParticleMaterial& p, double youn
           fmt(p.poisson),
       "fix m3 all property/global coefficientRestitution " +
           pairMatrix(p.restitution, p.restitution),
-      "fix m4 all property/global coefficientFriction " + pairMatrix(particleFriction, p.wallFriction),
+      "fix m4 all property/global coefficientFriction " +
+          pairMatrix(particleFriction, p.wallFriction),
   };
   if (p.rollingModel != "off")
     c.push_back("fix m5 all property/global coefficientRollingFriction " +
@@ -59,8 +60,10 @@ std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool l
 std::vector<std::string> contactCommands(const ParticleMaterial& p, double youngModulusFactor,
                                          bool limitForce) {
   std::vector<std::string> c;
-  // LIGGGHTS refuses moduli above 1e9 Pa (or below 5e6 Pa) unless told the particles are that stiff.
-  const double eP = p.youngModulus * youngModulusFactor, eW = p.wallYoungModulus * youngModulusFactor;
+  // LIGGGHTS refuses moduli above 1e9 Pa (or below 5e6 Pa) unless told the particles are that
+  // stiff.
+  const double eP = p.youngModulus * youngModulusFactor,
+               eW = p.wallYoungModulus * youngModulusFactor;
   if (std::max(eP, eW) > 1e9) c.push_back("hard_particles yes");
   if (eP < 5e6) c.push_back("soft_particles yes");
   for (auto& m : materialCommands(p, youngModulusFactor, p.friction, p.rollingFriction))
@@ -114,8 +117,12 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
   }
   c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length));
   c.push_back("fix integr all nve/sphere");
+  // Per-particle contact stress (stress x volume, N m; particle-particle contacts only) for the
+  // granular pressure p_s of mixture_extract.
+  c.push_back("compute pstress all stress/atom");
   // Particles leave through the outlet and the top: deleted by region, counted by the driver.
-  c.push_back("region outletRegion block " + fmt(s.channel.length) + " INF INF INF INF INF units box");
+  c.push_back("region outletRegion block " + fmt(s.channel.length) +
+              " INF INF INF INF INF units box");
   c.push_back("region topRegion block INF " + fmt(s.channel.length) + " " + fmt(s.channel.height) +
               " INF INF INF units box");
   c.push_back("thermo_style custom step atoms ke");

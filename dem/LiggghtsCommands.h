@@ -1,5 +1,6 @@
-// LIGGGHTS input-script lines for a scene. Kept as plain strings so the same lines drive the library
-// (our executable) and a plain `liggghts -in` run (the benchmark), and can be checked in tests.
+// LIGGGHTS input-script lines for a scene. Kept as plain strings so the same lines drive the
+// library (our executable) and a plain `liggghts -in` run (the benchmark), and can be checked in
+// tests.
 #pragma once
 
 #include <string>

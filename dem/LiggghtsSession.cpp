@@ -6,9 +6,29 @@
 #include <lammps.h>
 #include <update.h>
 
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
 #include <stdexcept>
 
 namespace mixflow::dem {
+
+namespace {
+// LIGGGHTS ends the process itself on an input or run-time error (error->all calls exit), with the
+// message only in its screen file. This exit hook repeats that message where the user looks.
+std::string gScreenFile;
+
+void reportLiggghtsError() {
+  std::ifstream in(gScreenFile);
+  std::string line, error;
+  while (std::getline(in, line))
+    if (line.rfind("ERROR", 0) == 0) error = line;
+  if (!error.empty())
+    std::cerr << "mixflow: LIGGGHTS stopped the run: " << error
+              << "\n  (full LIGGGHTS output: " << gScreenFile
+              << "; outputs written so far are kept)" << std::endl;
+}
+}  // namespace
 
 LiggghtsSession::LiggghtsSession(MPI_Comm comm, const std::string& logDir) : comm_(comm) {
   MPI_Comm_rank(comm, &rank_);
@@ -18,7 +38,11 @@ LiggghtsSession::LiggghtsSession(MPI_Comm comm, const std::string& logDir) : com
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm);
-  if (rank_ == 0) script_.open(logDir + "/in.liggghts");
+  if (rank_ == 0) {
+    script_.open(logDir + "/in.liggghts");
+    if (gScreenFile.empty()) std::atexit(reportLiggghtsError);
+    gScreenFile = screen;
+  }
 }
 
 LiggghtsSession::~LiggghtsSession() { delete lmp_; }

@@ -18,7 +18,7 @@ class LAMMPS;
 namespace mixflow::dem {
 
 class LiggghtsSession {
-public:
+ public:
   // logDir receives log.liggghts, screen.liggghts and the replay script in.liggghts.
   LiggghtsSession(MPI_Comm comm, const std::string& logDir);
   ~LiggghtsSession();
@@ -39,7 +39,7 @@ public:
   MPI_Comm comm() const { return comm_; }
   int rank() const { return rank_; }
 
-private:
+ private:
   MPI_Comm comm_;
   int rank_ = 0;
   LAMMPS_NS::LAMMPS* lmp_ = nullptr;

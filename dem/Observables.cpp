@@ -40,8 +40,8 @@ std::vector<double> gatherOnRoot(const std::vector<double>& local, MPI_Comm comm
     }
     all.resize(total);
   }
-  MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-              0, comm);
+  MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
+              comm);
   return all;
 }
 
@@ -77,7 +77,9 @@ double granularFront(const std::vector<std::array<double, 3>>& c, double radius,
   };
   // Dense cell list: head/next linked lists.
   std::vector<int> head(static_cast<size_t>(dims[0]) * dims[1] * dims[2], -1), next(n, -1);
-  auto index = [&](int i, int j, int k) { return (static_cast<size_t>(k) * dims[1] + j) * dims[0] + i; };
+  auto index = [&](int i, int j, int k) {
+    return (static_cast<size_t>(k) * dims[1] + j) * dims[0] + i;
+  };
   for (int p = 0; p < n; ++p) {
     const size_t id = index(cellOf(c[p], 0), cellOf(c[p], 1), cellOf(c[p], 2));
     next[p] = head[id];

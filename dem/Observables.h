@@ -1,5 +1,5 @@
-// Granular observables of a dam break (physics.md §5), computed from the particles each rank owns and
-// reduced over MPI. Functions on plain arrays so tests can feed them known configurations.
+// Granular observables of a dam break (physics.md §5), computed from the particles each rank owns
+// and reduced over MPI. Functions on plain arrays so tests can feed them known configurations.
 #pragma once
 
 #include <mpi.h>
@@ -34,13 +34,14 @@ std::vector<double> gatherOnRoot(const std::vector<double>& local, MPI_Comm comm
 
 // Front of the main mass (physics.md §5): particles are connected when their surface gap is at most
 // maxGap; the main mass is the largest connected cluster, and the front is its largest x plus r.
-// Detached particles (saltating or scattered ahead) never move the front. periodicWidth > 0 wraps z.
+// Detached particles (saltating or scattered ahead) never move the front. periodicWidth > 0 wraps
+// z.
 double granularFront(const std::vector<std::array<double, 3>>& centres, double radius,
                      double maxGap, double periodicWidth);
 
-// Deposit profile on x bins of width dx over [0, xmax): hTop = mean over z columns (width dz) of the
-// highest particle top in the column (0 for an empty column); hVolume = particle volume in the bin
-// divided by (packingFraction * W * dx).
+// Deposit profile on x bins of width dx over [0, xmax): hTop = mean over z columns (width dz) of
+// the highest particle top in the column (0 for an empty column); hVolume = particle volume in the
+// bin divided by (packingFraction * W * dx).
 struct Profile {
   std::vector<double> x, hTop, hVolume;
 };

@@ -18,7 +18,8 @@ Fill makeLooseFill(const Scene& s) {
   const long nz = periodic ? static_cast<long>(std::floor(s.sample.width / spacing))
                            : static_cast<long>(std::floor((s.sample.width - d) / spacing)) + 1;
   if (nx < 1 || nz < 1)
-    throw InputError(s.caseDir + "/constant/sceneProperties: entry 'sample.width': the sample is "
+    throw InputError(s.caseDir +
+                     "/constant/sceneProperties: entry 'sample.width': the sample is "
                      "narrower than one particle lattice spacing");
   const double dz = periodic ? s.sample.width / nz : spacing;
   const double z0 = periodic ? 0.5 * dz : r;

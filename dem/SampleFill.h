@@ -1,6 +1,6 @@
-// Initial loose fill of the sample: exactly N = phi L H W / Vp particles on a jittered lattice above the
-// floor, behind the gate. Gravity then settles them (DemDriver::settle) into a random packing whose
-// height and solid fraction are measured and reported.
+// Initial loose fill of the sample: exactly N = phi L H W / Vp particles on a jittered lattice
+// above the floor, behind the gate. Gravity then settles them (DemDriver::settle) into a random
+// packing whose height and solid fraction are measured and reported.
 #pragma once
 
 #include <array>

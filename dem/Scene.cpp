@@ -111,12 +111,12 @@ double ParticleMaterial::mass() const { return density * volume(); }
 
 Scene Scene::read(const std::string& caseDir) {
   namespace fs = std::filesystem;
-  if (!fs::is_directory(caseDir))
-    throw InputError(caseDir + ": case directory does not exist");
+  if (!fs::is_directory(caseDir)) throw InputError(caseDir + ": case directory does not exist");
   Scene s;
   s.caseDir = caseDir;
   s.name = fs::path(caseDir).lexically_normal().filename().string();
-  if (s.name.empty() || s.name == ".") s.name = fs::absolute(caseDir).parent_path().filename().string();
+  if (s.name.empty() || s.name == ".")
+    s.name = fs::absolute(caseDir).parent_path().filename().string();
 
   const Dictionary scene = Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties"));
   scene.allowOnly({"content", "sample", "channel", "particles", "liquid"});
@@ -137,16 +137,19 @@ Scene Scene::read(const std::string& caseDir) {
   // Cross-entry checks, named by the entry that has to change.
   const double d = s.particles.diameter;
   if (s.sample.length < d || s.sample.height < d || s.sample.width < d)
-    scene.subDict("sample").fail("length", "sample length, height and width must each be at least "
-                                           "one particle diameter (" + shortNum(d) + " m)");
+    scene.subDict("sample").fail("length",
+                                 "sample length, height and width must each be at least "
+                                 "one particle diameter (" +
+                                     shortNum(d) + " m)");
   if (s.channel.length <= s.sample.length + d)
-    scene.subDict("channel").fail(
-        "length", "value " + shortNum(s.channel.length) + " must exceed the sample length plus one "
-                  "diameter (" + shortNum(s.sample.length + d) + " m)");
+    scene.subDict("channel").fail("length", "value " + shortNum(s.channel.length) +
+                                                " must exceed the sample length plus one "
+                                                "diameter (" +
+                                                shortNum(s.sample.length + d) + " m)");
   if (s.channel.height < s.sample.height)
-    scene.subDict("channel").fail(
-        "height", "value " + shortNum(s.channel.height) + " must be at least the sample height (" +
-                      shortNum(s.sample.height) + " m)");
+    scene.subDict("channel").fail("height", "value " + shortNum(s.channel.height) +
+                                                " must be at least the sample height (" +
+                                                shortNum(s.sample.height) + " m)");
   if (s.dem.sampleInterval > s.writeInterval)
     dem.fail("sampleInterval", "value " + shortNum(s.dem.sampleInterval) +
                                    " must not exceed controlDict writeInterval (" +
@@ -154,8 +157,9 @@ Scene Scene::read(const std::string& caseDir) {
   if (s.dem.timeStep > 0) {
     const double limit = s.stableTimeStepLimit();
     if (s.dem.timeStep > limit)
-      dem.fail("timeStep", "value " + shortNum(s.dem.timeStep) + " s is above the stability limit " +
-                               shortNum(limit) + " s = min(maxRayleighFraction * T_R, "
+      dem.fail("timeStep", "value " + shortNum(s.dem.timeStep) +
+                               " s is above the stability limit " + shortNum(limit) +
+                               " s = min(maxRayleighFraction * T_R, "
                                "maxHertzFraction * t_Hertz) with T_R = " +
                                shortNum(s.rayleighTime()) + " s for the softened modulus " +
                                shortNum(s.youngModulusUsed()) + " Pa; allowed range (0, " +

@@ -17,8 +17,8 @@ struct SampleSpec {
 };
 
 struct ChannelSpec {
-  double length = 0;              // x extent from the back wall (m); particles beyond are deleted
-  double height = 0;              // y extent (m); particles above are deleted
+  double length = 0;                // x extent from the back wall (m); particles beyond are deleted
+  double height = 0;                // y extent (m); particles above are deleted
   std::string sideWalls = "walls";  // walls (frictional) | periodic (an infinitely wide channel)
 };
 
@@ -41,10 +41,10 @@ struct ParticleMaterial {
 
 struct SettleSpec {
   double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
-  double maxTime = 3.0;       // s of simulated settling at most
+  double maxTime = 3.0;   // s of simulated settling at most
   double kineticTolerance = 1e-5;  // settled when mean KE per particle < tol * m g d
-  double fillSpacing = 1.15;  // lattice spacing of the initial loose fill, in diameters
-  double relaxTime = 0.05;    // s with the real friction before the gate opens
+  double fillSpacing = 1.15;       // lattice spacing of the initial loose fill, in diameters
+  double relaxTime = 0.05;         // s with the real friction before the gate opens
   long seed = 12345;
 };
 
@@ -56,9 +56,9 @@ struct DemSpec {
   double maxHertzFraction = 0.1;     // ... or above this fraction of the fastest Hertz contact time
   bool limitForce = true;            // LIGGGHTS hertz option: no attractive normal force
   double sampleInterval = 0.01;      // s between time-series samples (and deletions at the outlet)
-  double frontGapDiameters = 0.5;    // surface gap (in d) that still connects a particle to the mass
-  double profileX = 0.8;             // velocity profile section (m)
-  double profileTime = 0.5;          // velocity profile time (s)
+  double frontGapDiameters = 0.5;  // surface gap (in d) that still connects a particle to the mass
+  double profileX = 0.8;           // velocity profile section (m)
+  double profileTime = 0.5;        // velocity profile time (s)
   double profileBinDiameters = 1.0;
   bool stopWhenArrested = true;
   double arrestKineticTolerance = 1e-6;  // arrested when mean KE per particle < tol * m g d

@@ -68,8 +68,8 @@ int main(int argc, char** argv) {
         std::cout << "[mixflowDem] " << collapse.stopReason << " at t = " << collapse.endTime
                   << " s: front " << collapse.front << " m, runout " << collapse.runout
                   << " m; deleted " << collapse.deletedOutlet << " at outlet, "
-                  << collapse.deletedTop << " at top, lost " << collapse.lost
-                  << "; outputs in " << driver.outputDir() << std::endl;
+                  << collapse.deletedTop << " at top, lost " << collapse.lost << "; outputs in "
+                  << driver.outputDir() << std::endl;
     }
   } catch (const InputError& e) {
     if (rank == 0) std::cerr << "mixflowDem: input error: " << e.what() << std::endl;

@@ -56,14 +56,14 @@ TEST(Dictionary, DefaultsOnlyWhenAbsent) {
 }
 
 TEST(Dictionary, RejectsMalformedInput) {
-  EXPECT_THROW(Dictionary::parse("a 1", "f"), InputError);          // no ';'
-  EXPECT_THROW(Dictionary::parse("s { a 1; ", "f"), InputError);    // no '}'
-  EXPECT_THROW(Dictionary::parse("a 1; a 2;", "f"), InputError);    // duplicate
-  EXPECT_THROW(Dictionary::parse("a 1; }", "f"), InputError);       // stray '}'
+  EXPECT_THROW(Dictionary::parse("a 1", "f"), InputError);        // no ';'
+  EXPECT_THROW(Dictionary::parse("s { a 1; ", "f"), InputError);  // no '}'
+  EXPECT_THROW(Dictionary::parse("a 1; a 2;", "f"), InputError);  // duplicate
+  EXPECT_THROW(Dictionary::parse("a 1; }", "f"), InputError);     // stray '}'
   const Dictionary d = Dictionary::parse("n 1.5; w x; inf 1e400;", "f");
-  EXPECT_THROW(d.integer("n", 0, 10), InputError);                   // not whole
-  EXPECT_THROW(d.word("w", {"y", "z"}), InputError);                 // not allowed
-  EXPECT_THROW(d.scalar("inf", Range::any()), InputError);           // overflow is not a number
+  EXPECT_THROW(d.integer("n", 0, 10), InputError);          // not whole
+  EXPECT_THROW(d.word("w", {"y", "z"}), InputError);        // not allowed
+  EXPECT_THROW(d.scalar("inf", Range::any()), InputError);  // overflow is not a number
   EXPECT_THROW(Dictionary::readFile("/nonexistent/dict"), InputError);
 }
 
