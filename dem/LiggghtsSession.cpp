@@ -58,7 +58,9 @@ void LiggghtsSession::commands(const std::vector<std::string>& lines) {
 
 void LiggghtsSession::run(long nSteps) {
   if (nSteps <= 0) return;
+  const double t0 = MPI_Wtime();
   command("run " + std::to_string(nSteps) + (needSetup_ ? " post no" : " pre no post no"));
+  runSeconds_ += MPI_Wtime() - t0;
   needSetup_ = false;
 }
 

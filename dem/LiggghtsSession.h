@@ -30,6 +30,8 @@ class LiggghtsSession {
   // Advance nSteps; setup is skipped when nothing changed since the last run (faster chunks).
   void run(long nSteps);
   void invalidateSetup() { needSetup_ = true; }
+  // Wall seconds spent inside LIGGGHTS `run` commands (the rest is the driver's own work).
+  double runSeconds() const { return runSeconds_; }
 
   ParticleView particles() const;
   long atomCount() const;
@@ -45,6 +47,7 @@ class LiggghtsSession {
   LAMMPS_NS::LAMMPS* lmp_ = nullptr;
   std::ofstream script_;
   bool needSetup_ = true;
+  double runSeconds_ = 0;
 };
 
 }  // namespace mixflow::dem

@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
                 << scene.stableTimeStepLimit() << " s, Rayleigh time " << scene.rayleighTime()
                 << " s)" << std::endl;
     if (!checkOnly) {
+      const double wall0 = MPI_Wtime();
       dem::DemDriver driver(scene, MPI_COMM_WORLD, std::cout);
       const auto settled = driver.settle();
       const auto collapse = driver.collapse();
@@ -69,7 +70,9 @@ int main(int argc, char** argv) {
                   << " s: front " << collapse.front << " m, runout " << collapse.runout
                   << " m; deleted " << collapse.deletedOutlet << " at outlet, "
                   << collapse.deletedTop << " at top, lost " << collapse.lost << "; outputs in "
-                  << driver.outputDir() << std::endl;
+                  << driver.outputDir() << "\n[mixflowDem] wall time " << MPI_Wtime() - wall0
+                  << " s, of which inside LIGGGHTS runs " << driver.session().runSeconds() << " s"
+                  << std::endl;
     }
   } catch (const InputError& e) {
     if (rank == 0) std::cerr << "mixflowDem: input error: " << e.what() << std::endl;
