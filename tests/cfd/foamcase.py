@@ -1,0 +1,188 @@
+"""Helpers shared by the mixflowFoam tests: run OpenFOAM programs, write and read ASCII case files.
+
+Standard library only (the tests run with any python3). Fields are read from ASCII files written
+with a high writePrecision; only internalField is parsed (uniform or nonuniform, scalar or vector).
+"""
+
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+
+
+def fail(msg):
+    print(f"FAIL: {msg}", flush=True)
+    sys.exit(1)
+
+
+def run(cmd, cwd, log_name, env_extra=None):
+    """Run cmd in cwd with output to cwd/log_name; fail with the log's tail on non-zero exit."""
+    log_path = os.path.join(cwd, log_name)
+    print(f"+ (cd {cwd} && {' '.join(shlex.quote(c) for c in cmd)}) > {log_name}", flush=True)
+    # PWD too: OpenFOAM warns "PWD is not the cwd()" when only the cwd changes.
+    env = dict(os.environ, PWD=cwd)
+    if env_extra:
+        env.update(env_extra)
+    with open(log_path, "w") as log:
+        rc = subprocess.call(cmd, cwd=cwd, env=env, stdout=log, stderr=subprocess.STDOUT)
+    with open(log_path) as log:
+        text = log.read()
+    if rc != 0:
+        print(text[-4000:])
+        fail(f"{cmd[0]} exited with status {rc} (log: {log_path})")
+    return text
+
+
+def require_foam_env():
+    if "WM_PROJECT_DIR" not in os.environ:
+        fail("WM_PROJECT_DIR is not set (OpenFOAM needs it; CTest sets it from MIXFLOW_FOAM_ENV)")
+
+
+def launcher_tokens(mpiexec):
+    """Split an MPI launcher command line given as one string (spaces or ';')."""
+    return [t for t in re.split(r"[;\s]+", mpiexec) if t]
+
+
+def run_solver(solver, case, log_name, np=1, mpiexec="mpirun --allow-run-as-root --oversubscribe",
+               decomposepar="decomposePar", reconstructpar="reconstructPar"):
+    """Run a solver serially, or decomposed on np ranks and reconstructed (all times)."""
+    if np <= 1:
+        return run([solver], case, log_name)
+    set_decomposition(case, np)
+    run([decomposepar, "-force"], case, "log.decomposePar")
+    text = run(launcher_tokens(mpiexec) + ["-x", "WM_PROJECT_DIR", "-np", str(np), solver,
+                                           "-parallel"], case, log_name)
+    if not re.search(rf"^nProcs\s*:\s*{np}\s*$", text, re.M):
+        fail(f"{log_name} does not show a parallel run on {np} ranks")
+    run([reconstructpar], case, "log.reconstructPar")
+    return text
+
+
+def set_decomposition(case, nprocs):
+    """Write system/decomposeParDict: the 'simple' method, nprocs slabs along x."""
+    write_foam_file(case, "system/decomposeParDict", "dictionary", "decomposeParDict",
+                    f"numberOfSubdomains {nprocs};\nmethod simple;\n"
+                    f"simpleCoeffs\n{{\n    n ({nprocs} 1 1);\n    delta 0.001;\n}}\n")
+
+
+def time_dirs(case):
+    """Numeric time directories of a case, sorted by value, as (value, name)."""
+    out = []
+    for name in os.listdir(case):
+        if not os.path.isdir(os.path.join(case, name)):
+            continue
+        try:
+            out.append((float(name), name))
+        except ValueError:
+            pass
+    return sorted(out)
+
+
+def latest_time(case):
+    times = [t for t in time_dirs(case) if t[0] > 0]
+    if not times:
+        fail(f"no time directory written in {case}")
+    return times[-1][1]
+
+
+def foam_header(cls, obj, location=None):
+    loc = f'    location    "{location}";\n' if location else ""
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+            f"    class       {cls};\n{loc}    object      {obj};\n}}\n\n")
+
+
+def write_foam_file(case, rel, cls, obj, body):
+    path = os.path.join(case, rel)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(foam_header(cls, obj, os.path.dirname(rel)))
+        f.write(body)
+
+
+def set_entry(path, key, value):
+    """Replace a top-level 'key value;' line of a dictionary file (must exist exactly once)."""
+    with open(path) as f:
+        text = f.read()
+    text, n = re.subn(rf"^{re.escape(key)}\s+[^;]*;", f"{key} {value};", text, flags=re.M)
+    if n != 1:
+        fail(f"cannot set {key} in {path}")
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def _parse_value(tok, kind):
+    if kind == "scalar":
+        return float(tok)
+    return tuple(float(v) for v in tok.strip("()").split())
+
+
+def read_internal_field(path, ncells=None):
+    """internalField of an ASCII vol field: list of floats (scalar) or 3-tuples (vector)."""
+    with open(path) as f:
+        text = f.read()
+    m = re.search(r"^internalField\s+uniform\s+(\([^)]*\)|\S+?)\s*;", text, re.M)
+    if m:
+        tok = m.group(1)
+        kind = "vector" if tok.startswith("(") else "scalar"
+        if ncells is None:
+            fail(f"{path}: uniform internalField needs the cell count")
+        return [_parse_value(tok, kind)] * ncells
+    m = re.search(r"^internalField\s+nonuniform\s+List<(scalar|vector)>\s*(\d+)\s*\(", text, re.M)
+    if not m:
+        fail(f"cannot parse internalField of {path}")
+    kind, n = m.group(1), int(m.group(2))
+    body = text[m.end():]
+    if kind == "scalar":
+        values = [float(v) for v in body[:body.index(")")].split()]
+    else:
+        values = [tuple(float(c) for c in v.split()) for v in re.findall(r"\(([^()]*)\)", body)[:n]]
+    if len(values) != n or (ncells is not None and n != ncells):
+        fail(f"{path}: expected {ncells if ncells is not None else n} values, found {len(values)}")
+    return values
+
+
+def read_label_list(path):
+    """An ASCII labelList file (e.g. constant/polyMesh/owner)."""
+    with open(path) as f:
+        text = f.read()
+    m = re.search(r"^(\d+)\s*\(", text, re.M)
+    if not m:
+        fail(f"cannot parse {path}")
+    values = [int(v) for v in text[m.end():text.index(")", m.end())].split()]
+    if len(values) != int(m.group(1)):
+        fail(f"{path}: expected {m.group(1)} labels, found {len(values)}")
+    return values
+
+
+def read_internal_face_field(path):
+    """internalField of an ASCII surfaceScalarField (e.g. phi): one value per internal face."""
+    with open(path) as f:
+        text = f.read()
+    m = re.search(r"^internalField\s+nonuniform\s+List<scalar>\s*(\d+)\s*\(", text, re.M)
+    if not m:
+        m = re.search(r"^internalField\s+uniform\s+(\S+?)\s*;", text, re.M)
+        if m:
+            return None, float(m.group(1))
+        fail(f"cannot parse internalField of {path}")
+    body = text[m.end():]
+    values = [float(v) for v in body[:body.index(")")].split()]
+    if len(values) != int(m.group(1)):
+        fail(f"{path}: expected {m.group(1)} values, found {len(values)}")
+    return values, None
+
+
+def format_scalar_list(values):
+    return "nonuniform List<scalar>\n{}\n(\n{}\n)".format(
+        len(values), "\n".join(f"{v:.17g}" for v in values))
+
+
+def format_vector_list(values):
+    return "nonuniform List<vector>\n{}\n(\n{}\n)".format(
+        len(values), "\n".join("({:.17g} {:.17g} {:.17g})".format(*v) for v in values))
+
+
+def copy_case(src, dst):
+    shutil.rmtree(dst, ignore_errors=True)
+    shutil.copytree(src, dst)
