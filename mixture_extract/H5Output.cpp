@@ -1,0 +1,531 @@
+#include "H5Output.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <stdexcept>
+
+#include "Dictionary.h"
+
+namespace mixflow::mx {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void h5fail(const std::string& what) { throw std::runtime_error("HDF5: " + what); }
+
+hid_t check(hid_t id, const std::string& what) {
+  if (id < 0) h5fail(what + " failed");
+  return id;
+}
+void check(herr_t e, const std::string& what) {
+  if (e < 0) h5fail(what + " failed");
+}
+
+// Owns an HDF5 identifier.
+class Id {
+ public:
+  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  operator hid_t() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+void removeAttr(hid_t obj, const std::string& name) {
+  if (H5Aexists(obj, name.c_str()) > 0)
+    check(H5Adelete(obj, name.c_str()), "delete attribute " + name);
+}
+
+void textAttr(hid_t obj, const std::string& name, const std::string& value) {
+  removeAttr(obj, name);
+  Id type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  check(H5Tset_size(type, H5T_VARIABLE), "string size");
+  check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
+  Id space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
+  Id a(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+             "attribute " + name),
+       H5Aclose);
+  const char* p = value.c_str();
+  check(H5Awrite(a, type, &p), "write attribute " + name);
+}
+
+void numberAttr(hid_t obj, const std::string& name, double value) {
+  removeAttr(obj, name);
+  Id space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
+  Id a(check(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+             "attribute " + name),
+       H5Aclose);
+  check(H5Awrite(a, H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
+}
+
+std::string readTextAttr(hid_t obj, const std::string& name) {
+  if (H5Aexists(obj, name.c_str()) <= 0) return "";
+  Id a(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name), H5Aclose);
+  Id type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  check(H5Tset_size(type, H5T_VARIABLE), "string size");
+  check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
+  char* p = nullptr;
+  check(H5Aread(a, type, &p), "read attribute " + name);
+  std::string s = p ? p : "";
+  H5free_memory(p);
+  return s;
+}
+
+hid_t group(hid_t parent, const std::string& name) {
+  if (H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0)
+    return check(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "open group " + name);
+  return check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               "create group " + name);
+}
+
+void fixed1d(hid_t parent, const std::string& name, const std::vector<double>& v) {
+  const hsize_t n = v.size();
+  Id space(check(H5Screate_simple(1, &n, nullptr), "space"), H5Sclose);
+  Id d(check(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                        H5P_DEFAULT),
+             "create " + name),
+       H5Dclose);
+  check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "write " + name);
+}
+
+// Dataset growing along its first dimension (one row per window); inner = the other dimensions.
+void extendible(hid_t parent, const std::string& name, hid_t type,
+                const std::vector<hsize_t>& inner, const std::string& units,
+                const std::string& meaning) {
+  std::vector<hsize_t> dims{0}, maxd{H5S_UNLIMITED}, chunk{1};
+  for (hsize_t k : inner) {
+    dims.push_back(k);
+    maxd.push_back(k);
+    chunk.push_back(k);
+  }
+  if (inner.empty()) chunk[0] = 64;
+  Id space(
+      check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxd.data()), "space"),
+      H5Sclose);
+  Id dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "dcpl"), H5Pclose);
+  check(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "chunk " + name);
+  if (!inner.empty() && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    check(H5Pset_shuffle(dcpl), "shuffle");
+    check(H5Pset_deflate(dcpl, 4), "deflate");
+  }
+  Id d(check(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+             "create " + name),
+       H5Dclose);
+  if (!units.empty()) textAttr(d, "units", units);
+  if (!meaning.empty()) textAttr(d, "meaning", meaning);
+}
+
+// Appends one row (the data of one window) to an extendible dataset.
+void appendRow(hid_t parent, const std::string& name, hid_t memType, const void* data) {
+  Id d(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  Id fspace0(check(H5Dget_space(d), "space " + name), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(fspace0);
+  std::vector<hsize_t> dims(rank);
+  H5Sget_simple_extent_dims(fspace0, dims.data(), nullptr);
+  std::vector<hsize_t> start(rank, 0), count(dims);
+  start[0] = dims[0];
+  count[0] = 1;
+  dims[0] += 1;
+  check(H5Dset_extent(d, dims.data()), "extend " + name);
+  Id fspace(check(H5Dget_space(d), "space " + name), H5Sclose);
+  check(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select " + name);
+  Id mspace(check(H5Screate_simple(rank, count.data(), nullptr), "mspace"), H5Sclose);
+  check(H5Dwrite(d, memType, mspace, fspace, H5P_DEFAULT, data), "write " + name);
+}
+
+std::vector<double> read1d(hid_t parent, const std::string& name) {
+  Id d(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  Id s(check(H5Dget_space(d), "space " + name), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(s);
+  std::vector<double> v(static_cast<size_t>(n));
+  if (n > 0)
+    check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "read " + name);
+  return v;
+}
+
+template <class T>
+std::vector<T> read1dAs(hid_t parent, const std::string& name, hid_t memType) {
+  Id d(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  Id s(check(H5Dget_space(d), "space " + name), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(s);
+  std::vector<T> v(static_cast<size_t>(n));
+  if (n > 0) check(H5Dread(d, memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "read " + name);
+  return v;
+}
+
+std::vector<std::string> children(hid_t g) {
+  H5G_info_t info;
+  check(H5Gget_info(g, &info), "group info");
+  std::vector<std::string> out;
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    const ssize_t len =
+        H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    std::string s(static_cast<size_t>(len), '\0');
+    H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, s.data(), len + 1, H5P_DEFAULT);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<FieldId> regionFields(const ExtractSettings& s) {
+  std::vector<FieldId> out;
+  for (FieldId f : outputFields(s))
+    if (f != fMassResidual && f != fMassScale) out.push_back(f);
+  return out;
+}
+
+const char* kCoordinates =
+    "x along the channel (down-channel, the paper's x), y vertical up (the paper's z; velocities "
+    "along it are named w), z across the width; every bin spans the whole width W";
+
+}  // namespace
+
+struct H5Output::Impl {
+  std::string path, tmp;
+  hid_t file = -1;
+  const AveragingGrid* grid = nullptr;
+  const ExtractSettings* settings = nullptr;
+  bool committed = false;
+};
+
+H5Output::H5Output(const std::string& path, const AveragingGrid& grid,
+                   const ExtractSettings& settings, const RootAttributes& attrs, bool overwrite)
+    : impl_(std::make_unique<Impl>()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  Impl& m = *impl_;
+  m.path = path;
+  m.tmp = path + ".tmp";
+  m.grid = &grid;
+  m.settings = &settings;
+  fs::create_directories(fs::path(path).parent_path());
+  fs::remove(m.tmp);  // left by an interrupted run
+  const bool resume = fs::exists(path) && !overwrite;
+  if (resume) {
+    {
+      const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (f < 0)
+        throw InputError(path +
+                         ": exists but is not a readable HDF5 file; delete it or run with "
+                         "-overwrite");
+      Id file(f, H5Fclose);
+      const std::string fp = readTextAttr(file, "settings_fingerprint");
+      if (fp != settings.fingerprint())
+        throw InputError(path +
+                         ": was made with other extractor settings (grid, thresholds, "
+                         "conventions, fluid or regions differ from " +
+                         settings.dictFile +
+                         "); delete it or run with -overwrite to start it again.\n  file:     " +
+                         fp + "\n  settings: " + settings.fingerprint());
+      Id w(check(H5Gopen2(file, "windows", H5P_DEFAULT), "open /windows"), H5Gclose);
+      const std::vector<double> t0 = read1d(w, "t0"), t1 = read1d(w, "t1");
+      for (size_t k = 0; k < t0.size(); ++k) existing_.emplace_back(t0[k], t1[k]);
+    }
+    fs::copy_file(path, m.tmp, fs::copy_options::overwrite_existing);
+    m.file = check(H5Fopen(m.tmp.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open " + m.tmp);
+  } else {
+    m.file =
+        check(H5Fcreate(m.tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + m.tmp);
+    textAttr(m.file, "created_utc", utcNow());
+    textAttr(m.file, "settings_fingerprint", settings.fingerprint());
+    const hsize_t ny = grid.ny(), nx = grid.nx();
+    {
+      Id g(group(m.file, "grid"), H5Gclose);
+      fixed1d(g, "x_edges", grid.xEdges());
+      fixed1d(g, "y_edges", grid.yEdges());
+      fixed1d(g, "z_edges", {0.0, grid.width()});
+      fixed1d(g, "x", grid.xCentres());
+      fixed1d(g, "y", grid.yCentres());
+      textAttr(g, "units", "m");
+      textAttr(g, "coordinates", kCoordinates);
+      numberAttr(g, "bin_volume_m3", grid.binVolume());
+      numberAttr(g, "width_m", grid.width());
+      textAttr(g, "layout",
+               "fields are (window, y bin, x bin); bin (i, j) spans [x_edges[i], "
+               "x_edges[i+1]) x [y_edges[j], y_edges[j+1]) x [0, width]");
+    }
+    const std::vector<FieldId> fields = outputFields(settings);
+    {
+      Id g(group(m.file, "windows"), H5Gclose);
+      textAttr(g, "rule",
+               "a window holds the snapshots (fluid times) t with t0 - tol <= t < t1 - "
+               "tol, tol = timeTolerance (root attribute time_tolerance_s)");
+      extendible(g, "t0", H5T_IEEE_F64LE, {}, "s", "window start");
+      extendible(g, "t1", H5T_IEEE_F64LE, {}, "s", "window end");
+      extendible(g, "t_mid", H5T_IEEE_F64LE, {}, "s", "(t0 + t1) / 2, the time given to ParaView");
+      extendible(g, "t_first_snapshot", H5T_IEEE_F64LE, {}, "s",
+                 "first particle snapshot in the window");
+      extendible(g, "t_last_snapshot", H5T_IEEE_F64LE, {}, "s",
+                 "last particle snapshot in the window");
+      extendible(g, "n_snapshots", H5T_STD_I64LE, {}, "1", "particle snapshots averaged");
+      extendible(g, "n_fluid_times", H5T_STD_I64LE, {}, "1", "fluid time directories averaged");
+      extendible(g, "particles_mean", H5T_IEEE_F64LE, {}, "1", "particles per snapshot");
+      extendible(g, "particle_volume_mean", H5T_IEEE_F64LE, {}, "m3",
+                 "particle volume per snapshot");
+      extendible(g, "particle_volume_outside_grid", H5T_IEEE_F64LE, {}, "m3",
+                 "particle volume per snapshot outside the averaging grid (not binned)");
+      for (FieldId f : fields)
+        if (fieldDef(f).invalidIf)
+          extendible(g, std::string("n_valid_") + fieldDef(f).name, H5T_STD_I64LE, {}, "1",
+                     std::string("bins where ") + fieldDef(f).name + " is valid");
+      for (const MaskBitInfo& b : maskBits())
+        extendible(g, std::string("n_masked_") + b.name, H5T_STD_I64LE, {}, "1",
+                   std::string("bins with mask reason: ") + b.meaning);
+    }
+    {
+      Id g(group(m.file, "fields"), H5Gclose);
+      textAttr(g, "coordinates", kCoordinates);
+      for (FieldId f : fields) {
+        const FieldDef& d = fieldDef(f);
+        extendible(g, d.name, H5T_IEEE_F64LE, {ny, nx}, d.unit, d.meaning);
+        Id ds(check(H5Dopen2(g, d.name, H5P_DEFAULT), "open"), H5Dclose);
+        textAttr(ds, "mask",
+                 d.invalidIf ? std::string("/masks/valid_") + d.name +
+                                   " (masked entries are NaN; /masks/reasons says why)"
+                             : std::string("always valid"));
+      }
+    }
+    {
+      Id g(group(m.file, "masks"), H5Gclose);
+      for (FieldId f : fields)
+        if (fieldDef(f).invalidIf)
+          extendible(g, std::string("valid_") + fieldDef(f).name, H5T_STD_U8LE, {ny, nx}, "1",
+                     std::string("1 where ") + fieldDef(f).name + " is valid, 0 where masked");
+      extendible(g, "reasons", H5T_STD_U16LE, {ny, nx}, "1",
+                 "bit set of the conditions that mask values (bit_<value> attributes)");
+      Id ds(check(H5Dopen2(g, "reasons", H5P_DEFAULT), "open"), H5Dclose);
+      for (const MaskBitInfo& b : maskBits())
+        textAttr(ds, "bit_" + std::to_string(b.bit), std::string(b.name) + ": " + b.meaning);
+    }
+    {
+      Id g(group(m.file, "counts"), H5Gclose);
+      extendible(g, "particle_samples", H5T_STD_I64LE, {ny, nx}, "1",
+                 "(particle, snapshot) pairs overlapping the bin in the window");
+      extendible(g, "particle_equivalents", H5T_IEEE_F64LE, {ny, nx}, "1",
+                 "sum over snapshots of V_i,bin / V_i (particles' worth of volume sampled)");
+      extendible(g, "fluid_samples", H5T_STD_I64LE, {ny, nx}, "1",
+                 "(fluid cell, time) pairs with the cell centre in the bin");
+    }
+    {
+      Id g(group(m.file, "regions"), H5Gclose);
+      textAttr(g, "meaning",
+               "region averages: the bins' additive sums (volumes, momenta, stress x "
+               "volume, liquid volumes) added over the bins whose centre lies in "
+               "the region, then the same formulas as per bin");
+      for (const Region& r : settings.regions) {
+        Id rg(group(g, r.name), H5Gclose);
+        numberAttr(rg, "x0", r.x0);
+        numberAttr(rg, "x1", r.x1);
+        numberAttr(rg, "y0", r.y0);
+        numberAttr(rg, "y1", r.y1);
+        numberAttr(rg, "n_bins", static_cast<double>(regionBins(grid, r).size()));
+        for (FieldId f : regionFields(settings)) {
+          const FieldDef& d = fieldDef(f);
+          extendible(rg, d.name, H5T_IEEE_F64LE, {}, d.unit, d.meaning);
+          if (d.invalidIf)
+            extendible(rg, std::string("valid_") + d.name, H5T_STD_U8LE, {}, "1", "1 where valid");
+        }
+        extendible(rg, "reasons", H5T_STD_U16LE, {}, "1", "mask bit set (see /masks/reasons)");
+        extendible(rg, "particle_samples", H5T_IEEE_F64LE, {}, "1", "(particle, snapshot) pairs");
+        extendible(rg, "fluid_samples", H5T_IEEE_F64LE, {}, "1", "(fluid cell, time) pairs");
+        extendible(rg, "mass_balance_residual_rms", H5T_IEEE_F64LE, {}, "1/s",
+                   "RMS of the bins' Eq. 9 residual over the region's bins where it is valid");
+        extendible(rg, "mass_balance_scale_rms", H5T_IEEE_F64LE, {}, "1/s",
+                   "RMS of mass_balance_scale over the same bins");
+        extendible(rg, "mass_balance_bins", H5T_STD_I64LE, {}, "1",
+                   "bins behind mass_balance_residual_rms");
+      }
+    }
+  }
+  for (const auto& [k, v] : attrs.text) textAttr(m.file, k, v);
+  for (const auto& [k, v] : attrs.numbers) numberAttr(m.file, k, v);
+  textAttr(m.file, "updated_utc", utcNow());
+}
+
+H5Output::~H5Output() {
+  if (impl_->file >= 0) H5Fclose(impl_->file);
+  if (!impl_->committed) {
+    std::error_code ec;
+    fs::remove(impl_->tmp, ec);
+  }
+}
+
+void H5Output::append(const WindowResult& w) {
+  Impl& m = *impl_;
+  const AveragingGrid& g = *m.grid;
+  const int nb = g.size();
+  const std::vector<FieldId> fields = outputFields(*m.settings);
+  {
+    Id gw(check(H5Gopen2(m.file, "windows", H5P_DEFAULT), "open /windows"), H5Gclose);
+    const double tMid = 0.5 * (w.window.t0 + w.window.t1);
+    const long long ns = w.snapshots, nf = w.fluidTimes;
+    appendRow(gw, "t0", H5T_NATIVE_DOUBLE, &w.window.t0);
+    appendRow(gw, "t1", H5T_NATIVE_DOUBLE, &w.window.t1);
+    appendRow(gw, "t_mid", H5T_NATIVE_DOUBLE, &tMid);
+    appendRow(gw, "t_first_snapshot", H5T_NATIVE_DOUBLE, &w.tFirst);
+    appendRow(gw, "t_last_snapshot", H5T_NATIVE_DOUBLE, &w.tLast);
+    appendRow(gw, "n_snapshots", H5T_NATIVE_LLONG, &ns);
+    appendRow(gw, "n_fluid_times", H5T_NATIVE_LLONG, &nf);
+    appendRow(gw, "particles_mean", H5T_NATIVE_DOUBLE, &w.particlesMean);
+    appendRow(gw, "particle_volume_mean", H5T_NATIVE_DOUBLE, &w.particleVolumeMean);
+    appendRow(gw, "particle_volume_outside_grid", H5T_NATIVE_DOUBLE, &w.particleVolumeOutsideMean);
+    for (FieldId f : fields)
+      if (fieldDef(f).invalidIf) {
+        long long n = 0;
+        for (const auto& b : w.bins) n += b.valid(f);
+        appendRow(gw, std::string("n_valid_") + fieldDef(f).name, H5T_NATIVE_LLONG, &n);
+      }
+    for (const MaskBitInfo& bit : maskBits()) {
+      long long n = 0;
+      for (const auto& b : w.bins) n += (b.reasons & bit.bit) != 0;
+      appendRow(gw, std::string("n_masked_") + bit.name, H5T_NATIVE_LLONG, &n);
+    }
+  }
+  std::vector<double> buf(nb);
+  std::vector<std::uint8_t> valid(nb);
+  {
+    Id gf(check(H5Gopen2(m.file, "fields", H5P_DEFAULT), "open /fields"), H5Gclose);
+    Id gm(check(H5Gopen2(m.file, "masks", H5P_DEFAULT), "open /masks"), H5Gclose);
+    for (FieldId f : fields) {
+      const FieldDef& d = fieldDef(f);
+      for (int b = 0; b < nb; ++b) {
+        const bool ok = w.bins[b].valid(f);
+        valid[b] = ok;
+        buf[b] = ok ? w.bins[b].value[f] : std::nan("");
+      }
+      appendRow(gf, d.name, H5T_NATIVE_DOUBLE, buf.data());
+      if (d.invalidIf)
+        appendRow(gm, std::string("valid_") + d.name, H5T_NATIVE_UINT8, valid.data());
+    }
+    std::vector<std::uint16_t> reasons(nb);
+    for (int b = 0; b < nb; ++b) reasons[b] = w.bins[b].reasons;
+    appendRow(gm, "reasons", H5T_NATIVE_UINT16, reasons.data());
+  }
+  {
+    Id gc(check(H5Gopen2(m.file, "counts", H5P_DEFAULT), "open /counts"), H5Gclose);
+    std::vector<long long> n(nb);
+    for (int b = 0; b < nb; ++b) n[b] = std::llround(w.sums[b].particleSamples);
+    appendRow(gc, "particle_samples", H5T_NATIVE_LLONG, n.data());
+    for (int b = 0; b < nb; ++b) buf[b] = w.sums[b].particleEquivalents;
+    appendRow(gc, "particle_equivalents", H5T_NATIVE_DOUBLE, buf.data());
+    for (int b = 0; b < nb; ++b) n[b] = std::llround(w.sums[b].fluidSamples);
+    appendRow(gc, "fluid_samples", H5T_NATIVE_LLONG, n.data());
+  }
+  {
+    Id gr(check(H5Gopen2(m.file, "regions", H5P_DEFAULT), "open /regions"), H5Gclose);
+    for (size_t k = 0; k < m.settings->regions.size(); ++k) {
+      const RegionResult& r = w.regions[k];
+      Id rg(check(H5Gopen2(gr, m.settings->regions[k].name.c_str(), H5P_DEFAULT), "open region"),
+            H5Gclose);
+      for (FieldId f : regionFields(*m.settings)) {
+        const FieldDef& d = fieldDef(f);
+        const bool ok = r.values.valid(f);
+        const double v = ok ? r.values.value[f] : std::nan("");
+        const std::uint8_t vb = ok;
+        appendRow(rg, d.name, H5T_NATIVE_DOUBLE, &v);
+        if (d.invalidIf) appendRow(rg, std::string("valid_") + d.name, H5T_NATIVE_UINT8, &vb);
+      }
+      appendRow(rg, "reasons", H5T_NATIVE_UINT16, &r.values.reasons);
+      appendRow(rg, "particle_samples", H5T_NATIVE_DOUBLE, &r.sums.particleSamples);
+      appendRow(rg, "fluid_samples", H5T_NATIVE_DOUBLE, &r.sums.fluidSamples);
+      const double rms = r.residualBins ? r.residualRms : std::nan("");
+      const double srms = r.residualBins ? r.residualScaleRms : std::nan("");
+      const long long nbins = r.residualBins;
+      appendRow(rg, "mass_balance_residual_rms", H5T_NATIVE_DOUBLE, &rms);
+      appendRow(rg, "mass_balance_scale_rms", H5T_NATIVE_DOUBLE, &srms);
+      appendRow(rg, "mass_balance_bins", H5T_NATIVE_LLONG, &nbins);
+    }
+  }
+  existing_.emplace_back(w.window.t0, w.window.t1);
+}
+
+void H5Output::commit() {
+  Impl& m = *impl_;
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flush");
+  check(H5Fclose(m.file), "close");
+  m.file = -1;
+  fs::rename(m.tmp, m.path);
+  m.committed = true;
+}
+
+StoredOutput readStoredOutput(const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  StoredOutput out;
+  Id file(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path), H5Fclose);
+  {
+    Id g(check(H5Gopen2(file, "grid", H5P_DEFAULT), "open /grid"), H5Gclose);
+    out.nx = static_cast<int>(read1d(g, "x").size());
+    out.ny = static_cast<int>(read1d(g, "y").size());
+  }
+  {
+    Id g(check(H5Gopen2(file, "windows", H5P_DEFAULT), "open /windows"), H5Gclose);
+    out.t0 = read1d(g, "t0");
+    out.t1 = read1d(g, "t1");
+    out.tMid = read1d(g, "t_mid");
+    out.snapshots = read1dAs<long>(g, "n_snapshots", H5T_NATIVE_LONG);
+    out.fluidTimes = read1dAs<long>(g, "n_fluid_times", H5T_NATIVE_LONG);
+  }
+  auto rank = [](const std::string& name) {
+    for (int k = 0; k < kFieldCount; ++k)
+      if (name == fieldDef(static_cast<FieldId>(k)).name) return k;
+    return 1000;
+  };
+  auto byFieldOrder = [&](std::vector<std::string>& v) {
+    std::stable_sort(v.begin(), v.end(),
+                     [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
+  };
+  {
+    Id g(check(H5Gopen2(file, "fields", H5P_DEFAULT), "open /fields"), H5Gclose);
+    out.fields = children(g);
+    byFieldOrder(out.fields);
+    for (const auto& f : out.fields) {
+      Id d(check(H5Dopen2(g, f.c_str(), H5P_DEFAULT), "open " + f), H5Dclose);
+      out.units[f] = readTextAttr(d, "units");
+    }
+  }
+  Id gr(check(H5Gopen2(file, "regions", H5P_DEFAULT), "open /regions"), H5Gclose);
+  for (const std::string& name : children(gr)) {
+    Id rg(check(H5Gopen2(gr, name.c_str(), H5P_DEFAULT), "open region " + name), H5Gclose);
+    StoredOutput::RegionSeries rs;
+    rs.name = name;
+    for (const std::string& ds : children(rg)) {
+      if (ds == "reasons") {
+        rs.reasons = read1dAs<std::uint16_t>(rg, ds, H5T_NATIVE_UINT16);
+      } else if (ds == "particle_samples") {
+        rs.particleSamples = read1d(rg, ds);
+      } else if (ds == "fluid_samples") {
+        rs.fluidSamples = read1d(rg, ds);
+      } else if (ds.rfind("valid_", 0) == 0) {
+        rs.valid[ds.substr(6)] = read1dAs<std::uint8_t>(rg, ds, H5T_NATIVE_UINT8);
+      } else {
+        rs.values[ds] = read1d(rg, ds);
+        rs.quantities.push_back(ds);
+        Id d(check(H5Dopen2(rg, ds.c_str(), H5P_DEFAULT), "open " + ds), H5Dclose);
+        out.units[ds] = readTextAttr(d, "units");
+      }
+    }
+    byFieldOrder(rs.quantities);
+    out.regions.push_back(rs);
+  }
+  return out;
+}
+
+}  // namespace mixflow::mx

@@ -1,0 +1,43 @@
+// Particle snapshots written by mixflowDem (LIGGGHTS `dump custom/vtk`): legacy VTK 5.1 ASCII
+// POLYDATA files VTK/particles/particles_<step>.vtk and their ParaView index
+// VTK/particles.vtk.series.
+//
+// Arrays used (LIGGGHTS quantity in brackets):
+//   POINTS x, y, z [x y z]; mass [mass]; radius [radius]; v [vx vy vz];
+//   c_pstress[1-3], c_pstress[4-6] [compute stress/atom: xx yy zz, xy xz yz], units N m (stress x
+//   volume), LAMMPS sign: the NEGATIVE of the per-atom pressure tensor times volume,
+//   S_i = -(m v v + W_i) when the compute has the kinetic term (plain `compute ID all stress/atom`,
+//   as mixflowDem issues it) and S_i = -W_i when it was created with `pair` only; W_i is particle
+//   i's half of the pair virial sum_j r_ij (x) F_ij. Wall contacts (fix wall/gran) add no per-atom
+//   virial in LIGGGHTS 3.8, so they are not in S_i.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace mixflow::mx {
+
+struct ParticleSnapshot {
+  double time = 0;
+  std::string file;
+  std::vector<double> x, y, z;                // centre (m)
+  std::vector<double> vx, vy, vz;             // velocity (m/s)
+  std::vector<double> mass;                   // kg
+  std::vector<double> radius;                 // m
+  std::vector<std::array<double, 6>> stress;  // c_pstress: xx yy zz xy xz yz (N m, LAMMPS sign)
+  size_t size() const { return x.size(); }
+};
+
+struct SnapshotEntry {
+  std::string file;  // absolute or case-relative path of the .vtk file
+  double time = 0;
+};
+
+// Reads <caseDir>/VTK/particles.vtk.series. Throws InputError naming the file on any problem.
+std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir);
+
+// Reads one snapshot file. Throws InputError naming the file and the missing/broken array.
+ParticleSnapshot readParticleSnapshot(const std::string& path, double time);
+
+}  // namespace mixflow::mx
