@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ContactTimes.h"
+#include "Dictionary.h"
 #include "LiggghtsCommands.h"
 #include "Observables.h"
 #include "Progress.h"
@@ -57,6 +58,7 @@ DemDriver::DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out)
   MPI_Barrier(comm);
   lig_ = std::make_unique<LiggghtsSession>(comm, demDir);
   dt_ = scene.timeStepUsed();
+  sampleEvery_ = std::max(1L, std::lround(scene.dem.sampleInterval / dt_));
 }
 
 DemDriver::~DemDriver() = default;
@@ -172,7 +174,9 @@ long DemDriver::deleteLeavers(long& outlet, long& top) {
 void DemDriver::startSnapshots() {
   // A periodic dump (not write_dump): LIGGGHTS tallies the per-atom contact virial only on steps a
   // dump has announced. Files are particles_<step>.vtk; step 0 is the gate opening.
-  snapshotEvery_ = std::max(1L, std::lround(scene_.writeInterval / dt_));
+  // Snapshots (and restart states) fall on sample boundaries: a whole number of sample chunks.
+  snapshotEvery_ =
+      sampleEvery_ * std::max(1L, std::lround(scene_.writeInterval / (sampleEvery_ * dt_)));
   lig_->command("dump snap all custom/vtk " + std::to_string(snapshotEvery_) + " " +
                 (fs::path(scene_.caseDir) / "VTK" / "particles" / "particles_*.vtk").string() +
                 " id type x y z vx vy vz fx fy fz omegax omegay omegaz radius mass c_pstress[1] "
@@ -191,23 +195,89 @@ void DemDriver::indexSnapshots(long lastStep) const {
   f << "  ]\n}\n";
 }
 
-CollapseReport DemDriver::collapse() {
-  const Scene& s = scene_;
-  const double d = s.particles.diameter, rad = 0.5 * d, m = s.particles.mass();
-  const double periodicWidth = s.channel.sideWalls == "periodic" ? s.sample.width : 0.0;
+CollapseReport DemDriver::collapse(const SettleReport& settled) {
+  settled_ = settled;
   // t = 0 at the gate opening is step 0, so periodic dumps fall on multiples of writeInterval.
   lig_->command("reset_timestep 0");
   step0_ = lig_->step();
   lig_->command("unfix wGate");
   lig_->invalidateSetup();
+  return runCollapse(CollapseReport{}, false, false);
+}
 
+void DemDriver::writeResumeState(const CollapseReport& rep, bool profileDone) {
+  // Two alternating restart files: a crash while writing one leaves the other and its state intact.
+  const fs::path dir = fs::path(scene_.caseDir) / "dem";
+  const std::string file = (dir / ("restart_" + std::to_string(restartSlot_) + ".bin")).string();
+  restartSlot_ = 1 - restartSlot_;
+  lig_->command("write_restart " + file);
+  if (rank_ != 0) return;
+  const fs::path tmp = dir / "resume.state.tmp";
+  {
+    std::ofstream f(tmp);
+    f << "// Written by mixflowDem with each particle snapshot; read by mixflowDem -resume.\n"
+      << "restartFile \"" << file << "\";\ntime " << fmt(simTime(), 17) << ";\nstep "
+      << lig_->step() << ";\ndeletedOutlet " << rep.deletedOutlet << ";\ndeletedTop "
+      << rep.deletedTop << ";\nlost " << rep.lost << ";\nprofileDone "
+      << (profileDone ? "yes" : "no") << ";\nsettled\n{\n  particles " << settled_.particles
+      << ";\n  height " << fmt(settled_.settledHeight, 17) << ";\n  sampleFraction "
+      << fmt(settled_.sampleFraction, 17) << ";\n  bulkFraction " << fmt(settled_.bulkFraction, 17)
+      << ";\n  settleTime " << fmt(settled_.settleTime, 17) << ";\n  converged "
+      << (settled_.converged ? "yes" : "no") << ";\n}\n";
+  }
+  fs::rename(tmp, dir / "resume.state");
+}
+
+CollapseReport DemDriver::resume(SettleReport& settled) {
+  const fs::path statePath = fs::path(scene_.caseDir) / "dem" / "resume.state";
+  if (!fs::exists(statePath))
+    throw InputError(statePath.string() +
+                     ": cannot open file: no restart state to resume from (run without -resume)");
+  const Dictionary st = Dictionary::readFile(statePath.string());
+  const std::string restartFile = st.word("restartFile", {});
+  const double t = st.scalar("time", Range::nonNegative());
+  const Dictionary sd = st.subDict("settled");
+  settled.particles = sd.integer("particles", 0, 2000000000);
+  settled.settledHeight = sd.scalar("height", Range::nonNegative());
+  settled.sampleFraction = sd.scalar("sampleFraction", Range::nonNegative());
+  settled.bulkFraction = sd.scalar("bulkFraction", Range::nonNegative());
+  settled.settleTime = sd.scalar("settleTime", Range::nonNegative());
+  settled.converged = sd.switchOr("converged", false);
+  settled_ = settled;
+  CollapseReport rep;
+  rep.deletedOutlet = st.integer("deletedOutlet", 0, 2000000000);
+  rep.deletedTop = st.integer("deletedTop", 0, 2000000000);
+  rep.lost = st.integer("lost", 0, 2000000000);
+  if (rank_ == 0)
+    out_ << "[dem] resuming at t = " << fmt(t, 6) << " s from " << restartFile << std::endl;
+  lig_->commands(resumeSetupCommands(scene_, restartFile, dt_));
+  step0_ = 0;  // the restart carries the step count since the gate opened
+  // Rows written after the restart state are recomputed: drop them.
+  if (rank_ == 0) {
+    const fs::path csv = fs::path(outDir_) / "timeSeries.csv";
+    std::ifstream in(csv);
+    std::string line, kept;
+    for (bool header = true; std::getline(in, line); header = false)
+      if (header || std::stod(line.substr(0, line.find(','))) <= t + 0.5 * dt_) kept += line + '\n';
+    in.close();
+    std::ofstream(csv.string() + ".tmp") << kept;
+    fs::rename(csv.string() + ".tmp", csv);
+  }
+  return runCollapse(rep, st.switchOr("profileDone", false), true);
+}
+
+CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool appendSeries) {
+  const Scene& s = scene_;
+  const double d = s.particles.diameter, rad = 0.5 * d, m = s.particles.mass();
+  const double periodicWidth = s.channel.sideWalls == "periodic" ? s.sample.width : 0.0;
   std::ofstream series;
   if (rank_ == 0) {
-    series.open(fs::path(outDir_) / "timeSeries.csv");
-    series << "time_s,particles,deleted_outlet,deleted_top,lost,front_x_m,runout_m,"
-              "ke_translational_J,ke_rotational_J,pe_J\n";
+    const fs::path csv = fs::path(outDir_) / "timeSeries.csv";
+    series.open(csv, appendSeries ? std::ios::app : std::ios::trunc);
+    if (!appendSeries)
+      series << "time_s,particles,deleted_outlet,deleted_top,lost,front_x_m,runout_m,"
+                "ke_translational_J,ke_rotational_J,pe_J\n";
   }
-  CollapseReport rep;
   long expected = 0;
   auto sample = [&](double t) {
     const ParticleView p = lig_->particles();
@@ -232,14 +302,14 @@ CollapseReport DemDriver::collapse() {
     return e;
   };
 
-  sample(0.0);
+  double t = simTime();
+  if (!appendSeries) sample(t);
   startSnapshots();
-  bool profileDone = false;
-  Progress progress("dem " + s.name, 0.0, s.endTime, out_);
-  double t = 0;
+  if (!appendSeries) writeResumeState(rep, profileDone);
+  Progress progress("dem " + s.name, t, s.endTime, out_);
   rep.stopReason = "endTime";
   while (t < s.endTime - 0.5 * dt_) {
-    const long n = std::max(1L, std::lround(std::min(s.dem.sampleInterval, s.endTime - t) / dt_));
+    const long n = std::min(sampleEvery_, std::max(1L, std::lround((s.endTime - t) / dt_)));
     lig_->run(n);
     t = simTime();
     const long before = expected;
@@ -260,6 +330,7 @@ CollapseReport DemDriver::collapse() {
       }
     }
     indexSnapshots(lig_->step() - step0_);
+    if ((lig_->step() - step0_) % snapshotEvery_ == 0) writeResumeState(rep, profileDone);
     if (rank_ == 0) progress.update(t);
     if (s.dem.stopWhenArrested && t >= s.dem.arrestMinTime &&
         meanKineticPerParticle(e) < s.dem.arrestKineticTolerance * m * kG * d) {
@@ -267,6 +338,7 @@ CollapseReport DemDriver::collapse() {
       break;
     }
   }
+  if (appendSeries && rep.remaining == 0) rep.remaining = lig_->atomCount();
   rep.endTime = t;
   if (rank_ == 0) progress.update(t, true);
 

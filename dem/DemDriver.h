@@ -37,7 +37,11 @@ class DemDriver {
   ~DemDriver();
 
   SettleReport settle();
-  CollapseReport collapse();
+  // Opens the gate (t = 0) and runs the collapse to endTime or arrest.
+  CollapseReport collapse(const SettleReport& settled);
+  // Continues a collapse from the last restart state in <case>/dem/resume.state (written with every
+  // particle snapshot), e.g. after a crash or with a later endTime. Returns the settle report too.
+  CollapseReport resume(SettleReport& settled);
   void writeSummary(const SettleReport& s, const CollapseReport& c) const;
   LiggghtsSession& session() { return *lig_; }
   const std::string& outputDir() const { return outDir_; }
@@ -47,6 +51,8 @@ class DemDriver {
   long deleteLeavers(long& outlet, long& top);
   void startSnapshots();
   void indexSnapshots(long lastStep) const;
+  void writeResumeState(const CollapseReport& rep, bool profileDone);
+  CollapseReport runCollapse(CollapseReport rep, bool profileDone, bool appendSeries);
   SettleReport measureSample(double settleTime, bool converged);
 
   const Scene& scene_;
@@ -58,6 +64,9 @@ class DemDriver {
   double dt_ = 0;
   long step0_ = 0;  // step at which the gate opened (t = 0)
   long snapshotEvery_ = 1;
+  long sampleEvery_ = 1;
+  int restartSlot_ = 0;
+  SettleReport settled_;
 };
 
 }  // namespace mixflow::dem

@@ -87,19 +87,13 @@ Box channelBox(const Scene& s, double fillTop) {
   return b;
 }
 
-std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,
-                                            double timeStep) {
+namespace {
+// Contacts, gravity, walls, integrator, regions and output settings: what a restart file does not
+// carry, so both a fresh start and a resume issue these lines.
+std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bool withGate) {
   const bool periodic = s.channel.sideWalls == "periodic";
   const double d = s.particles.diameter;
   std::vector<std::string> c = {
-      "units si",
-      "atom_style granular",
-      "atom_modify map array",
-      std::string("boundary f f ") + (periodic ? "p" : "f"),
-      "newton off",
-      "communicate single vel yes",
-      "processors " + s.dem.processors,
-      "read_data " + dataFile,
       "neighbor " + fmt(0.2 * d) + " bin",
       "neigh_modify delay 0",
   };
@@ -115,7 +109,7 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
     c.push_back(wallCommand("wSide0", p, lf, "zplane", 0.0));
     c.push_back(wallCommand("wSide1", p, lf, "zplane", s.sample.width));
   }
-  c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length));
+  if (withGate) c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length));
   c.push_back("fix integr all nve/sphere");
   // Per-particle contact stress (stress x volume, N m; particle-particle contacts only) for the
   // granular pressure p_s of mixture_extract.
@@ -129,6 +123,37 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
   c.push_back("thermo_modify lost ignore norm no");
   c.push_back("compute_modify thermo_temp dynamic yes");
   c.push_back("thermo 100000");
+  return c;
+}
+}  // namespace
+
+std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,
+                                            double timeStep) {
+  const bool periodic = s.channel.sideWalls == "periodic";
+  std::vector<std::string> c = {
+      "units si",
+      "atom_style granular",
+      "atom_modify map array",
+      std::string("boundary f f ") + (periodic ? "p" : "f"),
+      "newton off",
+      "communicate single vel yes",
+      "processors " + s.dem.processors,
+      "read_data " + dataFile,
+  };
+  for (auto& line : interactionCommands(s, timeStep, true)) c.push_back(line);
+  return c;
+}
+
+std::vector<std::string> resumeSetupCommands(const Scene& s, const std::string& restartFile,
+                                             double timeStep) {
+  // Units, atom style, map, boundaries, box and atoms come back from the restart file.
+  std::vector<std::string> c = {
+      "processors " + s.dem.processors,
+      "read_restart " + restartFile,
+      "newton off",
+      "communicate single vel yes",
+  };
+  for (auto& line : interactionCommands(s, timeStep, false)) c.push_back(line);
   return c;
 }
 

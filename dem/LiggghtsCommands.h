@@ -43,4 +43,8 @@ Box channelBox(const Scene& s, double fillTop);
 std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,
                                             double timeStep);
 
+// The same scene continued from a LIGGGHTS restart file written after the gate opened (no gate).
+std::vector<std::string> resumeSetupCommands(const Scene& s, const std::string& restartFile,
+                                             double timeStep);
+
 }  // namespace mixflow::dem

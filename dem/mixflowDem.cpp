@@ -15,10 +15,12 @@
 
 namespace {
 void usage() {
-  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-parallel]\n"
+  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-resume] [-parallel]\n"
                "  Runs the dry granular dam break described by DIR/constant/sceneProperties,\n"
                "  DIR/system/demDict and DIR/system/controlDict. Outputs: DIR/postProcessing/dem,\n"
-               "  DIR/VTK (ParaView), DIR/dem (LIGGGHTS logs and replay script).\n";
+               "  DIR/VTK (ParaView), DIR/dem (LIGGGHTS logs and replay script).\n"
+               "  -resume continues from the last snapshot's restart state (after a crash, or\n"
+               "  with a later endTime in system/controlDict).\n";
 }
 }  // namespace
 
@@ -27,13 +29,15 @@ int main(int argc, char** argv) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::string caseDir = ".";
-  bool checkOnly = false;
+  bool checkOnly = false, resume = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-case" && i + 1 < argc) {
       caseDir = argv[++i];
     } else if (a == "-check") {
       checkOnly = true;
+    } else if (a == "-resume") {
+      resume = true;
     } else if (a == "-parallel") {
       // Ranks come from mpirun; accepted for the OpenFOAM convention.
     } else if (a == "-help" || a == "--help") {
@@ -62,8 +66,9 @@ int main(int argc, char** argv) {
     if (!checkOnly) {
       const double wall0 = MPI_Wtime();
       dem::DemDriver driver(scene, MPI_COMM_WORLD, std::cout);
-      const auto settled = driver.settle();
-      const auto collapse = driver.collapse();
+      dem::SettleReport settled;
+      const auto collapse =
+          resume ? driver.resume(settled) : driver.collapse(settled = driver.settle());
       driver.writeSummary(settled, collapse);
       if (rank == 0)
         std::cout << "[mixflowDem] " << collapse.stopReason << " at t = " << collapse.endTime
@@ -80,8 +85,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     if (rank == 0)
       std::cerr << "mixflowDem: run stopped: " << e.what()
-                << "\n  Outputs written so far are kept; rerun the case to start again."
-                << std::endl;
+                << "\n  Outputs written so far are kept. To continue from the last particle "
+                   "snapshot: mixflowDem -case "
+                << caseDir << " -resume" << std::endl;
     status = 1;
   }
   MPI_Finalize();
