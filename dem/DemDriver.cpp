@@ -1,6 +1,7 @@
 #include "DemDriver.h"
 
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -307,6 +308,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
   startSnapshots();
   if (!appendSeries) writeResumeState(rep, profileDone);
   Progress progress("dem " + s.name, t, s.endTime, out_);
+  std::deque<std::pair<double, double>> frontHistory;  // (t, front) over the arrest window
   rep.stopReason = "endTime";
   while (t < s.endTime - 0.5 * dt_) {
     const long n = std::min(sampleEvery_, std::max(1L, std::lround((s.endTime - t) / dt_)));
@@ -332,8 +334,22 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
     indexSnapshots(lig_->step() - step0_);
     if ((lig_->step() - step0_) % snapshotEvery_ == 0) writeResumeState(rep, profileDone);
     if (rank_ == 0) progress.update(t);
-    if (s.dem.stopWhenArrested && t >= s.dem.arrestMinTime &&
-        meanKineticPerParticle(e) < s.dem.arrestKineticTolerance * m * kG * d) {
+    // Arrest test on rank 0 (which holds the front history), decision shared with all ranks.
+    int arrested = 0;
+    if (rank_ == 0) {
+      frontHistory.emplace_back(t, rep.front);
+      while (frontHistory.size() > 1 && frontHistory[1].first <= t - s.dem.arrestWindow)
+        frontHistory.pop_front();
+      const bool windowFull = frontHistory.front().first <= t - s.dem.arrestWindow + 0.5 * dt_;
+      double lo = 1e300, hi = -1e300;
+      for (const auto& tf : frontHistory)
+        lo = std::min(lo, tf.second), hi = std::max(hi, tf.second);
+      arrested = s.dem.stopWhenArrested && t >= s.dem.arrestMinTime && windowFull &&
+                 hi - lo <= s.dem.arrestFrontDiameters * d &&
+                 meanKineticPerParticle(e) < s.dem.arrestKineticTolerance * m * kG * d;
+    }
+    MPI_Bcast(&arrested, 1, MPI_INT, 0, comm_);
+    if (arrested) {
       rep.stopReason = "arrested";
       break;
     }

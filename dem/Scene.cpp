@@ -70,7 +70,7 @@ void readDem(const Dictionary& d, DemSpec& m) {
   d.allowOnly({"youngModulusFactor", "timeStep", "rayleighFraction", "maxRayleighFraction",
                "maxHertzFraction", "limitForce", "sampleInterval", "frontGapDiameters",
                "velocityProfile", "stopWhenArrested", "arrestKineticTolerance", "arrestMinTime",
-               "processors", "settle"});
+               "arrestFrontDiameters", "arrestWindow", "processors", "settle"});
   m.youngModulusFactor =
       d.scalarOr("youngModulusFactor", m.youngModulusFactor, Range::openClosed(0.0, 1.0));
   if (d.has("timeStep") && d.text("timeStep") != "auto")
@@ -91,6 +91,9 @@ void readDem(const Dictionary& d, DemSpec& m) {
   m.arrestKineticTolerance =
       d.scalarOr("arrestKineticTolerance", m.arrestKineticTolerance, Range::positive());
   m.arrestMinTime = d.scalarOr("arrestMinTime", m.arrestMinTime, Range::nonNegative());
+  m.arrestFrontDiameters =
+      d.scalarOr("arrestFrontDiameters", m.arrestFrontDiameters, Range::nonNegative());
+  m.arrestWindow = d.scalarOr("arrestWindow", m.arrestWindow, Range::positive());
   if (d.has("processors")) {
     m.processors = d.text("processors");
     std::istringstream in(m.processors);

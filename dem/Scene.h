@@ -61,9 +61,14 @@ struct DemSpec {
   double profileTime = 0.5;        // velocity profile time (s)
   double profileBinDiameters = 1.0;
   bool stopWhenArrested = true;
-  double arrestKineticTolerance = 1e-6;  // arrested when mean KE per particle < tol * m g d
-  double arrestMinTime = 0.3;            // never declare arrest before this time (s)
-  std::string processors = "* * *";      // LIGGGHTS processors grid
+  // Arrested when the front moved less than arrestFrontDiameters d over the last arrestWindow s and
+  // the mean KE per particle is below arrestKineticTolerance m g d. (The kinetic energy alone never
+  // reaches zero: a constant rolling torque (cdt) keeps grains at rest chattering.)
+  double arrestKineticTolerance = 1e-3;
+  double arrestFrontDiameters = 0.1;
+  double arrestWindow = 0.25;
+  double arrestMinTime = 0.3;        // never declare arrest before this time (s)
+  std::string processors = "* * *";  // LIGGGHTS processors grid
 };
 
 struct Scene {
