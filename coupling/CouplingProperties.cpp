@@ -1,0 +1,40 @@
+#include "CouplingProperties.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "ForceModel.h"
+#include "VoidFractionModel.h"
+
+namespace mixflow::coupling {
+
+CouplingProperties CouplingProperties::read(const std::string& file) {
+  CouplingProperties p;
+  p.dict = Dictionary::readFile(file);
+  const Dictionary& d = p.dict;
+  std::vector<std::string> allowed = {"FoamFile",           "demScript",         "exchangeEvery",
+                                      "forceModels",        "voidFractionModel", "interpolation",
+                                      "sourceDistribution", "voidfractionMin",   "logEvery"};
+  for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
+  for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
+  d.allowOnly(allowed);
+
+  p.demScript = d.text("demScript");
+  p.exchangeEvery = d.integerOr("exchangeEvery", 100, 1, 1000000000);
+  std::istringstream models(d.text("forceModels"));
+  for (std::string m; models >> m;) {
+    if (std::find(p.forceModels.begin(), p.forceModels.end(), m) != p.forceModels.end())
+      d.fail("forceModels", "model '" + m + "' is listed twice");
+    p.forceModels.push_back(m);
+  }
+  p.voidFractionModel = d.wordOr("voidFractionModel", "divided", VoidFractionModel::available());
+  p.interpolation = d.wordOr("interpolation", "cell", {"cell", "cellPoint"});
+  p.sourceDistribution = d.wordOr("sourceDistribution", "volume", {"volume", "centre"});
+  p.hasVoidfractionMin = d.has("voidfractionMin");
+  if (p.hasVoidfractionMin)
+    p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});
+  p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
+  return p;
+}
+
+}  // namespace mixflow::coupling

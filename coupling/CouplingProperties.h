@@ -1,0 +1,39 @@
+// constant/couplingProperties: what a coupled case asks of the coupling (OpenFOAM dictionary
+// syntax, read with mixflow's validating reader). Example with every entry and its default:
+//
+//   demScript          "system/in.liggghts";   // LIGGGHTS commands of the particle scene
+//   (required) exchangeEvery      100;           // DEM steps per exchange; CFD deltaT =
+//   exchangeEvery x DEM dt forceModels        (DiFeliceDrag buoyancy viscousForce);   // only these
+//   run (required) voidFractionModel  divided;       // divided | centre interpolation      cell;
+//   // cell | cellPoint: fluid values at a particle sourceDistribution volume;        // volume:
+//   reaction spread like the particle's volume;
+//                                     // centre: all in the centre's cell
+//   voidfractionMin    0.05;          // eps_f floor; default: mixflowProperties' voidfractionMin
+//   logEvery           1;             // exchanges between lines of
+//   postProcessing/coupling/exchange.csv DiFeliceDragCoeffs { divideByVoidfraction yes; }   //
+//   default: yes in formulation B dividedCoeffs      { nShells 3; nDirections 16; }
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Dictionary.h"
+
+namespace mixflow::coupling {
+
+struct CouplingProperties {
+  Dictionary dict;  // the file (for the models' Coeffs sub-dictionaries)
+  std::string demScript;
+  long exchangeEvery = 100;
+  std::vector<std::string> forceModels;
+  std::string voidFractionModel = "divided";
+  std::string interpolation = "cell";
+  std::string sourceDistribution = "volume";
+  bool hasVoidfractionMin = false;
+  double voidfractionMin = 0.05;
+  long logEvery = 1;
+
+  static CouplingProperties read(const std::string& file);
+};
+
+}  // namespace mixflow::coupling

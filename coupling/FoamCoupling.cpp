@@ -1,0 +1,697 @@
+// OpenFOAM side of the coupling: mesh search, field sampling, field filling, checks and the log.
+// See FoamCoupling.H for the sequence of an exchange.
+
+// OpenFOAM headers (include order matters for OpenFOAM's templates; keep clang-format away).
+// clang-format off
+#include "FoamCoupling.H"
+#include "fvc.H"
+#include "interpolation.H"
+#include "meshSearch.H"
+#include "incompressibleTwoPhaseMixture.H"
+#include "incompressibleTurbulenceModel.H"
+// clang-format on
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "CouplingProperties.h"
+#include "DemLink.h"
+#include "ForceModel.h"
+#include "LiggghtsSession.h"
+#include "SourceAssembly.h"
+#include "SparseExchange.h"
+#include "Vec3.h"
+#include "VoidFractionModel.h"
+
+namespace mixflow::coupling {
+
+namespace {
+
+Vec3 toVec(const Foam::vector& v) { return Vec3(v.x(), v.y(), v.z()); }
+Foam::vector toFoam(const Vec3& v) { return Foam::vector(v.x, v.y, v.z); }
+
+// Cell search in the local (sub)mesh, seeded with the particle's cell at the last exchange (or
+// the centre's cell for the points of a divided sphere): first the seed and its face neighbours
+// by the face-plane test (convex cells), then OpenFOAM's meshSearch walk from the seed, then its
+// octree search (no seed, or the walk failed). Points outside the local mesh's bounding box are
+// rejected at once. Each call returns one cell, so a point is never counted twice.
+class FoamCellLocator final : public CellLocator {
+ public:
+  explicit FoamCellLocator(const Foam::fvMesh& mesh)
+      : mesh_(mesh),
+        search_(mesh, Foam::polyMesh::CELL_TETS),
+        bounds_(mesh.points(), false) {  // this rank's (sub)mesh, not reduced over ranks
+    // Inflate by a relative 1e-9 so that points on the outer boundary faces are not lost to the
+    // box test (the cell test decides them).
+    const Foam::vector span = bounds_.span();
+    const Foam::scalar tol = 1e-9 * Foam::mag(span);
+    bounds_.min() -= Foam::vector(tol, tol, tol);
+    bounds_.max() += Foam::vector(tol, tol, tol);
+  }
+
+  long findCell(const Vec3& p, long seed) const override {
+    const Foam::point q(p.x, p.y, p.z);
+    if (!bounds_.contains(q)) return -1;
+    if (seed >= 0 && seed < mesh_.nCells()) {
+      // Fast path: the seed cell and its face neighbours, by the face-plane test.
+      if (inConvexCell(q, seed)) return seed;
+      const Foam::cell& faces = mesh_.cells()[seed];
+      for (const Foam::label f : faces) {
+        if (!mesh_.isInternalFace(f)) continue;
+        const Foam::label nb =
+            mesh_.faceOwner()[f] == seed ? mesh_.faceNeighbour()[f] : mesh_.faceOwner()[f];
+        if (inConvexCell(q, nb)) return nb;
+      }
+      const Foam::label c = search_.findCell(q, seed, false);  // walk
+      if (c >= 0) return c;
+    }
+    return search_.findCell(q, -1, true);  // octree
+  }
+
+  // Point in a convex cell with planar faces: behind (or on) every face plane. Much cheaper than
+  // the tetrahedral test and exact for such cells (blockMesh/snappy hexes); a point on a shared
+  // face is given to the first cell tested, so it is still counted once.
+  bool inConvexCell(const Foam::point& q, Foam::label cell) const {
+    const Foam::cell& faces = mesh_.cells()[cell];
+    for (const Foam::label f : faces) {
+      const Foam::scalar s = (q - mesh_.faceCentres()[f]) & mesh_.faceAreas()[f];
+      if (mesh_.faceOwner()[f] == cell ? s > 0 : s < 0) return false;
+    }
+    return true;
+  }
+
+  // The sphere is inside a convex cell with planar faces if it is at least r behind every face.
+  bool sphereInsideCell(const Vec3& centre, double r, long cell) const override {
+    const Foam::cell& faces = mesh_.cells()[cell];
+    const Foam::point c(centre.x, centre.y, centre.z);
+    for (const Foam::label f : faces) {
+      Foam::vector n = mesh_.faceAreas()[f] / Foam::mag(mesh_.faceAreas()[f]);
+      if (mesh_.faceOwner()[f] != cell) n = -n;  // outward from `cell`
+      if (((mesh_.faceCentres()[f] - c) & n) < r) return false;
+    }
+    return true;
+  }
+
+ private:
+  const Foam::fvMesh& mesh_;
+  Foam::meshSearch search_;
+  Foam::boundBox bounds_;
+};
+
+[[noreturn]] void fatal(const std::string& msg) {
+  FatalErrorInFunction << msg.c_str() << Foam::exit(Foam::FatalError);
+  throw std::runtime_error(msg);  // not reached
+}
+
+// Totals vector layout (summed over ranks, except the last entry: min).
+enum Total {
+  kParticles,
+  kParticlesOutside,
+  kParticleVolume,
+  kOutsideVolume,
+  kClippedVolume,
+  kFluidSeenVolume,
+  kFpX,
+  kFpY,
+  kFpZ,
+  kFfX,
+  kFfY,
+  kFfZ,
+  kForceScale,
+  kDragX,
+  kDragY,
+  kDragZ,
+  kVx,
+  kVy,
+  kVz,  // sum of particle velocities
+  kX,
+  kY,
+  kZ,       // sum of particle positions
+  kRemote,  // particles whose fluid cell is on another rank than their DEM owner
+  kNumSums,
+  kMinVoidfraction = kNumSums,
+  kNumTotals
+};
+
+}  // namespace
+
+FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidfraction,
+                           Foam::volScalarField& Ksl, Foam::volVectorField& Us,
+                           Foam::volVectorField& fSource, const Foam::volVectorField& U,
+                           const Foam::volScalarField& rho, const Foam::volScalarField& p,
+                           const Foam::incompressibleTwoPhaseMixture& mixture,
+                           const Foam::incompressibleTurbulenceModel& turbulence,
+                           const Foam::uniformDimensionedVectorField& g,
+                           Foam::scalar solverVoidfractionMin, const Foam::word& viscousStress)
+    : mesh_(mesh),
+      voidfraction_(voidfraction),
+      Ksl_(Ksl),
+      Us_(Us),
+      fSource_(fSource),
+      U_(U),
+      rho_(rho),
+      p_(p),
+      mixture_(mixture),
+      turbulence_(turbulence),
+      g_(g) {
+  const Foam::Time& runTime = mesh.time();
+  const std::string caseDir = runTime.globalPath();
+  const std::string propsFile = caseDir + "/constant/couplingProperties";
+
+  ForceContext context;
+  context.g = toVec(g.value());
+  context.formulation = "B";  // mixflowFoam's only formulation (it refuses any other)
+  context.viscousStress = viscousStress;
+  try {
+    props_ = std::make_unique<CouplingProperties>(CouplingProperties::read(propsFile));
+    for (const auto& name : props_->forceModels)
+      forceModels_.push_back(ForceModel::New(name, props_->dict, context));
+    voidFractionModel_ = VoidFractionModel::New(props_->voidFractionModel, props_->dict);
+  } catch (const InputError& e) {
+    fatal(e.what());
+  }
+  if (forceModels_.empty()) fatal(propsFile + ": forceModels is empty");
+  needs_ = kNeedsVoidfraction;
+  for (const auto& m : forceModels_) needs_ |= m->needs();
+
+  voidfractionMin_ = solverVoidfractionMin;
+  if (props_->hasVoidfractionMin) {
+    if (props_->voidfractionMin < solverVoidfractionMin)
+      fatal(propsFile + ": voidfractionMin " + std::to_string(props_->voidfractionMin) +
+            " is below mixflowProperties' voidfractionMin " +
+            std::to_string(solverVoidfractionMin) + ", which the solver enforces");
+    voidfractionMin_ = props_->voidfractionMin;
+  }
+
+  // The coupling's fields are part of the state: write them with the others.
+  Ksl_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+  Us_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+  fSource_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+
+  startDem();
+
+  locator_ = std::make_unique<FoamCellLocator>(mesh_);
+  // Every rank's (sub)mesh box, inflated like the locator's: where R1 sends a particle.
+  {
+    const Foam::boundBox local(mesh_.points(), false);
+    const Foam::scalar tol = 1e-9 * Foam::mag(mesh_.bounds().span());
+    const double mine[6] = {local.min().x() - tol, local.min().y() - tol, local.min().z() - tol,
+                            local.max().x() + tol, local.max().y() + tol, local.max().z() + tol};
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    boxes_.resize(6 * size);
+    MPI_Allgather(mine, 6, MPI_DOUBLE, boxes_.data(), 6, MPI_DOUBLE, MPI_COMM_WORLD);
+  }
+  std::vector<double> volumes(mesh_.V().begin(), mesh_.V().end());
+  assembly_ = std::make_unique<SourceAssembly>(std::move(volumes), voidfractionMin_,
+                                               props_->sourceDistribution == "centre"
+                                                   ? SourceAssembly::Distribution::centre
+                                                   : SourceAssembly::Distribution::volume);
+
+  Foam::Info << "Coupling (constant/couplingProperties): exchange every " << props_->exchangeEvery
+             << " DEM steps (DEM dt " << link_->timeStep() << " s, CFD dt " << runTime.deltaTValue()
+             << " s), interpolation " << props_->interpolation.c_str() << ", reaction distribution "
+             << props_->sourceDistribution.c_str() << ", voidfractionMin " << voidfractionMin_
+             << Foam::nl << "  void fraction: " << voidFractionModel_->describe().c_str()
+             << Foam::nl;
+  for (const auto& m : forceModels_) Foam::Info << "  force: " << m->describe().c_str() << Foam::nl;
+  Foam::Info << Foam::endl;
+
+  writeLogHeader();
+}
+
+FoamCoupling::~FoamCoupling() = default;
+
+Foam::label FoamCoupling::exchangeEvery() const { return props_->exchangeEvery; }
+
+// Parallel runs: LIGGGHTS' processor grid is made to match OpenFOAM's `simple` decomposition
+// (n = (nx ny nz), processor index x-fastest, which is LIGGGHTS' `map xyz`), so that with the
+// DEM box = the mesh's bounding box a particle's DEM owner usually also holds its fluid cells and
+// R1-R3 of an exchange stay on the rank. Skipped if the DEM script sets `processors` itself or
+// the decomposition is not `simple` (the exchange is then still correct, with more traffic; the
+// log's "fluid cell on another rank" count shows how much).
+void FoamCoupling::demProcessorGrid(const std::string& script) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size == 1) return;
+  {
+    std::ifstream in(script);
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream words(line);
+      std::string first;
+      if (words >> first && first == "processors") {
+        Foam::Info << "Coupling: the DEM script sets its own processor grid" << Foam::endl;
+        return;
+      }
+    }
+  }
+  const std::string file = std::string(mesh_.time().globalPath()) + "/system/decomposeParDict";
+  try {
+    const Dictionary d = Dictionary::readFile(file);
+    const std::string method = d.text("method");
+    if (method != "simple") {
+      Foam::Info << "Coupling: decomposition method " << method.c_str()
+                 << " has no matching LIGGGHTS grid; LIGGGHTS decomposes its box itself"
+                 << Foam::endl;
+      return;
+    }
+    const std::vector<double> n = d.subDict("simpleCoeffs").scalars("n", Range::positive());
+    if (n.size() != 3 || n[0] * n[1] * n[2] != size)
+      fatal(file + ": simpleCoeffs n must have 3 entries whose product is the rank count");
+    std::ostringstream cmd;
+    cmd << "processors " << n[0] << " " << n[1] << " " << n[2] << " map xyz";
+    dem_->command(cmd.str());
+    Foam::Info << "Coupling: LIGGGHTS grid " << cmd.str().c_str()
+               << " (matches the simple decomposition)" << Foam::endl;
+  } catch (const InputError& e) {
+    fatal(e.what());
+  }
+}
+
+void FoamCoupling::startDem() {
+  const Foam::Time& runTime = mesh_.time();
+  const std::string caseDir = runTime.globalPath();
+  const std::string demDir = caseDir + "/dem";
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) std::filesystem::create_directories(demDir);
+  MPI_Barrier(MPI_COMM_WORLD);
+  dem_ = std::make_unique<dem::LiggghtsSession>(MPI_COMM_WORLD, demDir);
+
+  // The scene's LIGGGHTS commands, line by line ('&' continues a line, '#' starts a comment),
+  // through the session so that dem/in.liggghts replays the whole run.
+  const std::string script =
+      props_->demScript.front() == '/' ? props_->demScript : caseDir + "/" + props_->demScript;
+  std::ifstream in(script);
+  if (!in) fatal("cannot open the DEM script " + script + " (demScript in couplingProperties)");
+  demProcessorGrid(script);
+  std::string line, pending;
+  while (std::getline(in, line)) {
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+    if (!line.empty() && line.back() == '&') {
+      line.pop_back();
+      pending += line + " ";
+      continue;
+    }
+    line = pending + line;
+    pending.clear();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    dem_->command(line);
+  }
+
+  link_ = std::make_unique<DemLink>(*dem_);
+  // The external force array is not initialised by LIGGGHTS: zero it before the setup run.
+  std::vector<ParticleState> particles;
+  std::vector<std::int64_t> tags;
+  link_->pull(particles, tags);
+  link_->push(std::vector<Vec3>(particles.size()));
+  dem_->command("run 0");
+  dem_->invalidateSetup();
+  demStep0_ = link_->step();
+  time0_ = runTime.value();
+
+  // Time steps: one CFD step is exchangeEvery DEM steps, fixed.
+  const double dtDem = link_->timeStep();
+  const double dtCfd = runTime.deltaTValue();
+  const double expected = props_->exchangeEvery * dtDem;
+  if (std::abs(dtCfd - expected) > 1e-9 * expected)
+    fatal("CFD deltaT " + std::to_string(dtCfd) + " s must equal exchangeEvery (" +
+          std::to_string(props_->exchangeEvery) + ") x DEM timestep (" + std::to_string(dtDem) +
+          " s) = " + std::to_string(expected) + " s (system/controlDict deltaT)");
+  if (runTime.controlDict().lookupOrDefault<bool>("adjustTimeStep", false))
+    fatal("adjustTimeStep must be off in a coupled run (the CFD step is exchangeEvery DEM steps)");
+
+  // Gravity: the particles' weight (LIGGGHTS fix gravity) and the fluid's g must agree, or
+  // buoyancy and weight would not balance.
+  const Vec3 gDem = link_->gravity();
+  const Vec3 gCfd = toVec(g_.value());
+  if (mag(gDem - gCfd) > 1e-9 * std::max(mag(gCfd), 1e-300)) {
+    std::ostringstream s;
+    s << "gravity differs: LIGGGHTS fix gravity gives (" << gDem.x << " " << gDem.y << " " << gDem.z
+      << "), constant/g (" << gCfd.x << " " << gCfd.y << " " << gCfd.z << ")";
+    fatal(s.str());
+  }
+}
+
+void FoamCoupling::evolve() {
+  dem_->run(props_->exchangeEvery);
+  exchange();
+}
+
+namespace {
+
+// Record layouts of the three point-to-point rounds of an exchange (doubles).
+constexpr int kR1 = 9;       // owner index, tag, x(3), v(3), radius
+constexpr int kR2Head = 11;  // owner index, work index, local inside volume, holds centre,
+                             // beta, F_explicit(3), U_i(3); then 3 per force model
+constexpr int kR3 = 14;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
+                             // holds centre, (spare)
+
+// Does the sphere (centre x, radius r) touch the box [lo, hi]?
+bool sphereTouchesBox(const Vec3& x, double r, const double* lo, const double* hi) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double c = x[a] < lo[a] ? lo[a] - x[a] : (x[a] > hi[a] ? x[a] - hi[a] : 0.0);
+    d2 += c * c;
+  }
+  return d2 <= r * r;
+}
+
+}  // namespace
+
+// One exchange. Serial and parallel share the same three rounds; in serial every buffer goes to
+// the rank itself (moved, no MPI):
+//   R1  each particle goes from its DEM owner to every rank whose (sub)mesh box its sphere
+//       touches (always including the owner); every rank locates the particles it received in
+//       its own cells, adds the volume found there to eps_f, and -- if it holds the centre --
+//       samples the fluid and evaluates the force models;
+//   R2  every rank reports to the owner, per particle: the volume it found and (if it holds the
+//       centre) the force; the owner adds the parts (outside volume = V_p - total inside), takes
+//       the force from the lowest rank holding the centre, and writes it into LIGGGHTS;
+//   R3  the owner sends the force to the ranks holding parts of the particle, which deposit the
+//       reaction in their cells (weights V_ic / total inside volume, or all in the centre cell).
+void FoamCoupling::exchange() {
+  const double wall0 = MPI_Wtime();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const size_t nModels = forceModels_.size();
+
+  std::vector<ParticleState> own;
+  std::vector<std::int64_t> tags;
+  link_->pull(own, tags);
+  const size_t nOwn = own.size();
+
+  // R1: particles to the ranks whose mesh they touch.
+  std::vector<std::vector<double>> buf(size);
+  for (size_t i = 0; i < nOwn; ++i) {
+    const ParticleState& p = own[i];
+    for (int q = 0; q < size; ++q) {
+      if (q != rank && !sphereTouchesBox(p.x, p.radius, &boxes_[6 * q], &boxes_[6 * q + 3]))
+        continue;
+      buf[q].insert(buf[q].end(), {static_cast<double>(i), static_cast<double>(tags[i]), p.x.x,
+                                   p.x.y, p.x.z, p.v.x, p.v.y, p.v.z, p.radius});
+    }
+  }
+  std::vector<std::vector<double>> in = exchangeBuffers(buf, MPI_COMM_WORLD);
+
+  struct Work {
+    int owner = 0;
+    long ownerIndex = 0;
+    ParticleState p;
+    ParticleCells cells;
+    ParticleForce force;
+    Vec3 Ui;
+    std::vector<Vec3> modelForces;
+  };
+  std::vector<Work> work;
+  std::vector<std::int64_t> workTags;
+  for (int q = 0; q < size; ++q)
+    for (size_t k = 0; k + kR1 <= in[q].size(); k += kR1) {
+      const double* r = &in[q][k];
+      Work w;
+      w.owner = q;
+      w.ownerIndex = static_cast<long>(r[0]);
+      w.p.x = Vec3(r[2], r[3], r[4]);
+      w.p.v = Vec3(r[5], r[6], r[7]);
+      w.p.radius = r[8];
+      // Seed: the cell this rank found the particle's centre in at the last exchange.
+      const auto tag = static_cast<std::int64_t>(r[1]);
+      const auto it = lastCell_.find(tag);
+      voidFractionModel_->locate(w.p, it == lastCell_.end() ? -1 : it->second, *locator_, w.cells);
+      work.push_back(std::move(w));
+      workTags.push_back(tag);
+    }
+
+  // Volumes -> eps_f.
+  assembly_->reset();
+  std::unordered_map<std::int64_t, long> newCell;
+  newCell.reserve(work.size());
+  for (size_t k = 0; k < work.size(); ++k) {
+    assembly_->addSolid(work[k].cells);
+    if (work[k].cells.centreCell >= 0) newCell[workTags[k]] = work[k].cells.centreCell;
+  }
+  lastCell_.swap(newCell);
+  assembly_->finishVoidfraction();
+  {
+    Foam::scalarField& vf = voidfraction_.primitiveFieldRef();
+    const std::vector<double>& eps = assembly_->voidfraction();
+    forAll(vf, c) { vf[c] = eps[c]; }
+  }
+
+  // The fluid at the particles whose centre is here, and their forces.
+  const Foam::word scheme(props_->interpolation);
+  std::vector<Vec3> Ucell(mesh_.nCells());
+  forAll(U_, c) { Ucell[c] = toVec(U_[c]); }
+  Foam::autoPtr<Foam::interpolation<Foam::vector>> Uint =
+      Foam::interpolation<Foam::vector>::New(scheme, U_);
+  Foam::autoPtr<Foam::interpolation<Foam::scalar>> rhoInt =
+      Foam::interpolation<Foam::scalar>::New(scheme, rho_);
+  Foam::tmp<Foam::volScalarField> tmu;
+  Foam::autoPtr<Foam::interpolation<Foam::scalar>> muInt;
+  if (needs_ & kNeedsMu) {
+    // Apparent dynamic viscosity of the liquid/air mixture: rho nu, nu from the phases' viscosity
+    // models at the resolved shear rate (Herschel-Bulkley etc.).
+    tmu = Foam::volScalarField::New("muApparent", rho_ * mixture_.nu());
+    muInt = Foam::interpolation<Foam::scalar>::New(scheme, tmu());
+  }
+  Foam::tmp<Foam::volVectorField> tdivTau;
+  Foam::autoPtr<Foam::interpolation<Foam::vector>> divTauInt;
+  if (needs_ & kNeedsDivTau) {
+    // div(tau) exactly as mixflowFoam's viscous term (viscousStress full), evaluated explicitly:
+    // div(rho nu_eff dev2(T(grad U))) + laplacian(rho nu_eff, U), with the solver's scheme names.
+    const Foam::volScalarField rhoNuEff(rho_ * turbulence_.nuEff());
+    tdivTau = Foam::volVectorField::New(
+        "divTau", Foam::fvc::div(rhoNuEff * Foam::dev2(Foam::T(Foam::fvc::grad(U_)))) +
+                      Foam::fvc::laplacian(rhoNuEff, U_));
+    divTauInt = Foam::interpolation<Foam::vector>::New(scheme, tdivTau());
+  }
+  Foam::tmp<Foam::volVectorField> tgradP;
+  Foam::autoPtr<Foam::interpolation<Foam::vector>> gradPInt;
+  if (needs_ & kNeedsGradP) {
+    tgradP = Foam::fvc::grad(p_);
+    gradPInt = Foam::interpolation<Foam::vector>::New(scheme, tgradP());
+  }
+  const Foam::scalarField& vf = voidfraction_.primitiveField();
+  for (Work& w : work) {
+    const long c = w.cells.centreCell;
+    if (c < 0) continue;
+    const Foam::point x(w.p.x.x, w.p.x.y, w.p.x.z);
+    FluidAtParticle f;
+    f.U = toVec(Uint->interpolate(x, c));
+    f.rho = rhoInt->interpolate(x, c);
+    f.voidfraction = vf[c];
+    if (muInt.valid()) f.mu = muInt->interpolate(x, c);
+    if (divTauInt.valid()) f.divTau = toVec(divTauInt->interpolate(x, c));
+    if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
+    w.Ui = f.U;
+    w.modelForces.resize(nModels);
+    for (size_t m = 0; m < nModels; ++m) {
+      const ParticleForce fm = forceModels_[m]->force(w.p, f);
+      w.force.beta += fm.beta;
+      w.force.explicitForce += fm.explicitForce;
+      w.modelForces[m] = fm.total(f.U, w.p.v);
+    }
+  }
+
+  // R2: parts and forces back to the owners.
+  buf.assign(size, {});
+  for (size_t k = 0; k < work.size(); ++k) {
+    const Work& w = work[k];
+    const double inside = w.cells.insideVolume();
+    const bool centre = w.cells.centreCell >= 0;
+    if (inside <= 0 && !centre) continue;
+    std::vector<double>& b = buf[w.owner];
+    b.insert(b.end(), {static_cast<double>(w.ownerIndex), static_cast<double>(k), inside,
+                       centre ? 1.0 : 0.0, w.force.beta, w.force.explicitForce.x,
+                       w.force.explicitForce.y, w.force.explicitForce.z, w.Ui.x, w.Ui.y, w.Ui.z});
+    for (size_t m = 0; m < nModels; ++m) {
+      const Vec3 F = centre ? w.modelForces[m] : Vec3();
+      b.insert(b.end(), {F.x, F.y, F.z});
+    }
+  }
+  in = exchangeBuffers(buf, MPI_COMM_WORLD);
+
+  struct Part {
+    int rank;
+    long workIndex;
+    double inside;
+    bool centre;
+  };
+  struct Owned {
+    std::vector<Part> parts;
+    double inside = 0;
+    int host = -1;  // lowest rank holding the centre
+    ParticleForce force;
+    Vec3 Ui;
+  };
+  std::vector<Owned> owned(nOwn);
+  modelTotals_.assign(3 * nModels, 0.0);
+  const size_t r2 = kR2Head + 3 * nModels;
+  for (int q = 0; q < size; ++q)  // rank order: the first centre holder is the lowest rank
+    for (size_t k = 0; k + r2 <= in[q].size(); k += r2) {
+      const double* r = &in[q][k];
+      Owned& o = owned.at(static_cast<size_t>(r[0]));
+      const bool centre = r[3] > 0.5;
+      o.parts.push_back({q, static_cast<long>(r[1]), r[2], centre});
+      o.inside += r[2];
+      if (centre && o.host < 0) {
+        o.host = q;
+        o.force.beta = r[4];
+        o.force.explicitForce = Vec3(r[5], r[6], r[7]);
+        o.Ui = Vec3(r[8], r[9], r[10]);
+        for (size_t m = 0; m < 3 * nModels; ++m) modelTotals_[m] += r[kR2Head + m];
+      }
+    }
+  std::vector<Vec3> forces(nOwn);
+  double remote = 0;
+  for (size_t i = 0; i < nOwn; ++i) {
+    Owned& o = owned[i];
+    assembly_->countParticle(own[i], std::max(0.0, own[i].volume() - o.inside), o.host >= 0);
+    if (o.host < 0) continue;  // centre in no cell of the mesh: no fluid force
+    if (o.host != rank) remote += 1;
+    forces[i] = o.force.total(o.Ui, own[i].v);
+    assembly_->addParticleForce(own[i], o.force, o.Ui);
+  }
+  link_->push(forces);
+
+  // R3: the reaction to the ranks holding the particle's parts.
+  buf.assign(size, {});
+  for (size_t i = 0; i < nOwn; ++i) {
+    const Owned& o = owned[i];
+    if (o.host < 0) continue;
+    bool hostDone = false;
+    for (const Part& part : o.parts) {
+      const bool isHost = part.centre && part.rank == o.host && !hostDone;
+      hostDone = hostDone || isHost;
+      if (!isHost && part.inside <= 0) continue;
+      const ParticleState& p = own[i];
+      buf[part.rank].insert(
+          buf[part.rank].end(),
+          {static_cast<double>(part.workIndex), o.force.beta, o.force.explicitForce.x,
+           o.force.explicitForce.y, o.force.explicitForce.z, o.Ui.x, o.Ui.y, o.Ui.z, p.v.x, p.v.y,
+           p.v.z, o.inside, isHost ? 1.0 : 0.0, 0.0});
+    }
+  }
+  in = exchangeBuffers(buf, MPI_COMM_WORLD);
+  for (int q = 0; q < size; ++q)
+    for (size_t k = 0; k + kR3 <= in[q].size(); k += kR3) {
+      const double* r = &in[q][k];
+      Work& w = work.at(static_cast<size_t>(r[0]));
+      ParticleForce f;
+      f.beta = r[1];
+      f.explicitForce = Vec3(r[2], r[3], r[4]);
+      ParticleState p = w.p;
+      p.v = Vec3(r[8], r[9], r[10]);
+      assembly_->depositReaction(p, w.cells, f, Vec3(r[5], r[6], r[7]), r[11], r[12] > 0.5, Ucell);
+    }
+  assembly_->finishSources(Ucell);
+
+  // The fluid's fields.
+  {
+    Foam::scalarField& K = Ksl_.primitiveFieldRef();
+    Foam::vectorField& Usf = Us_.primitiveFieldRef();
+    Foam::vectorField& fs = fSource_.primitiveFieldRef();
+    const auto& aK = assembly_->Ksl();
+    const auto& aUs = assembly_->Us();
+    const auto& aF = assembly_->fSource();
+    forAll(K, c) {
+      K[c] = aK[c];
+      Usf[c] = toFoam(aUs[c]);
+      fs[c] = toFoam(aF[c]);
+    }
+  }
+
+  // Totals over ranks, log.
+  const ExchangeTotals& t = assembly_->totals();
+  totals_.assign(kNumTotals, 0.0);
+  totals_[kParticles] = t.particles;
+  totals_[kParticlesOutside] = t.particlesOutside;
+  totals_[kParticleVolume] = t.particleVolume;
+  totals_[kOutsideVolume] = t.outsideVolume;
+  totals_[kClippedVolume] = t.clippedVolume;
+  totals_[kFluidSeenVolume] = t.fluidSeenVolume;
+  for (int k = 0; k < 3; ++k) {
+    totals_[kFpX + k] = t.forceOnParticles[k];
+    totals_[kFfX + k] = t.forceOnFluid[k];
+    totals_[kDragX + k] = t.dragOnParticles[k];
+  }
+  totals_[kForceScale] = t.forceScale;
+  totals_[kRemote] = remote;
+  for (const auto& p : own)
+    for (int k = 0; k < 3; ++k) {
+      totals_[kVx + k] += p.v[k];
+      totals_[kX + k] += p.x[k];
+    }
+  MPI_Allreduce(MPI_IN_PLACE, totals_.data(), kNumSums, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  double minVf = t.minVoidfraction;
+  MPI_Allreduce(MPI_IN_PLACE, &minVf, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  totals_[kMinVoidfraction] = minVf;
+  if (!modelTotals_.empty())
+    MPI_Allreduce(MPI_IN_PLACE, modelTotals_.data(), static_cast<int>(modelTotals_.size()),
+                  MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  log(MPI_Wtime() - wall0);
+  ++exchanges_;
+}
+
+void FoamCoupling::writeLogHeader() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0) return;
+  const std::string dir = std::string(mesh_.time().globalPath()) + "/postProcessing/coupling";
+  std::filesystem::create_directories(dir);
+  csv_.open(dir + "/exchange.csv");
+  csv_ << "# mixflowCoupled exchange log: one line per exchange (every logEvery). Volumes in m3,"
+          " forces in N.\n"
+          "# volumeError = (fluidSeenVolume - (particleVolume - outsideVolume - clippedVolume))"
+          " / particleVolume; actionReaction = |Fp + Ff| / forceScale, Fp = sum of fluid forces"
+          " on particles, Ff = sum_c V_c [Ksl (Us - U) + fSource] at the exchange,"
+          " forceScale = sum |F_i|.\n";
+  csv_ << "time,demStep,particles,particlesOutside,particleVolume,outsideVolume,clippedVolume,"
+          "fluidSeenVolume,volumeError,Fp_x,Fp_y,Fp_z,Ff_x,Ff_y,Ff_z,forceScale,actionReaction,"
+          "minVoidfraction,meanVx,meanVy,meanVz,meanX,meanY,meanZ,remote";
+  for (const auto& m : forceModels_)
+    csv_ << "," << m->name() << "_x," << m->name() << "_y," << m->name() << "_z";
+  csv_ << ",seconds\n";
+}
+
+void FoamCoupling::log(double seconds) {
+  const std::vector<double>& T = totals_;
+  const double vp = T[kParticleVolume];
+  const double volumeError =
+      vp > 0 ? (T[kFluidSeenVolume] - (vp - T[kOutsideVolume] - T[kClippedVolume])) / vp : 0.0;
+  const Vec3 Fp(T[kFpX], T[kFpY], T[kFpZ]), Ff(T[kFfX], T[kFfY], T[kFfZ]);
+  const double actionReaction = T[kForceScale] > 0 ? mag(Fp + Ff) / T[kForceScale] : 0.0;
+  const double np = std::max(T[kParticles], 1.0);
+
+  Foam::Info << "Coupling: " << static_cast<long>(T[kParticles]) << " particles ("
+             << static_cast<long>(T[kParticlesOutside]) << " outside), volume error " << volumeError
+             << ", outside " << T[kOutsideVolume] << " m3, clipped " << T[kClippedVolume]
+             << " m3, action-reaction " << actionReaction << ", min voidfraction "
+             << T[kMinVoidfraction] << ", fluid cell on another rank "
+             << static_cast<long>(T[kRemote]) << ", " << seconds << " s" << Foam::endl;
+
+  if (!csv_.is_open() || exchanges_ % props_->logEvery != 0) return;
+  csv_ << std::setprecision(17) << mesh_.time().value() << "," << link_->step() << ","
+       << static_cast<long>(T[kParticles]) << "," << static_cast<long>(T[kParticlesOutside]);
+  for (Total k : {kParticleVolume, kOutsideVolume, kClippedVolume, kFluidSeenVolume})
+    csv_ << "," << T[k];
+  csv_ << "," << volumeError;
+  for (Total k : {kFpX, kFpY, kFpZ, kFfX, kFfY, kFfZ, kForceScale}) csv_ << "," << T[k];
+  csv_ << "," << actionReaction << "," << T[kMinVoidfraction];
+  for (Total k : {kVx, kVy, kVz, kX, kY, kZ}) csv_ << "," << T[k] / np;
+  csv_ << "," << static_cast<long>(T[kRemote]);
+  for (double v : modelTotals_) csv_ << "," << v;
+  csv_ << "," << seconds << "\n" << std::flush;
+}
+
+}  // namespace mixflow::coupling

@@ -1,0 +1,102 @@
+// Fluid-particle force models (physics.md section 4), selected at run time by name from the
+// `forceModels (...)` list of constant/couplingProperties; only the listed ones run.
+//
+// A model sees one particle and the fluid sampled at it, and returns its force split as
+//   F = beta (U - v) + F_explicit,
+// beta >= 0 being an implicit drag coefficient [kg/s] (only drag laws set it). The coupling turns
+// beta into the fluid's implicit Ksl (Us - U) and F_explicit into the explicit fSource, so that
+// the fluid receives exactly -sum F (cfd/README.md, "What the coupling provides").
+//
+// Models are plain C++ (no OpenFOAM): the fluid values come already interpolated.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Dictionary.h"
+#include "Vec3.h"
+
+namespace mixflow::coupling {
+
+// One particle as the coupling sees it.
+struct ParticleState {
+  Vec3 x;             // centre [m]
+  Vec3 v;             // velocity [m/s]
+  double radius = 0;  // [m]
+  double volume() const { return 4.18879020478639098 * radius * radius * radius; }  // 4/3 pi r^3
+};
+
+// The fluid at a particle (cell value or interpolated, see FoamCoupling).
+struct FluidAtParticle {
+  Vec3 U;                   // interstitial fluid velocity [m/s]
+  double rho = 0;           // fluid density: the VOF liquid/air mixture's [kg/m3]
+  double mu = 0;            // apparent dynamic viscosity rho * nu of the mixture [Pa s]
+  double voidfraction = 1;  // eps_f of the particle's cell (after the eps_f floor)
+  Vec3 divTau;              // div(tau): viscous force per unit volume on the fluid [N/m3]
+  Vec3 gradP;               // grad(p) [Pa/m] (no formulation-B model uses it)
+};
+
+// Which fluid quantities a model reads (the coupling samples only what the active models need).
+enum FluidNeeds : unsigned {
+  kNeedsU = 1u << 0,
+  kNeedsRho = 1u << 1,
+  kNeedsMu = 1u << 2,
+  kNeedsVoidfraction = 1u << 3,
+  kNeedsDivTau = 1u << 4,
+  kNeedsGradP = 1u << 5,
+};
+
+// Settings every model may check its consistency against.
+struct ForceContext {
+  Vec3 g;                              // gravitational acceleration [m/s2]
+  std::string formulation = "B";       // volume-averaged equations (physics.md section 3)
+  std::string viscousStress = "full";  // fluid viscous term: full div(tau) or div(eps_f tau)
+};
+
+struct ParticleForce {
+  double beta = 0;     // implicit drag coefficient [kg/s]: drag = beta (U - v)
+  Vec3 explicitForce;  // every other force on the particle [N]
+  Vec3 total(const Vec3& U, const Vec3& v) const { return beta * (U - v) + explicitForce; }
+};
+
+class ForceModel {
+ public:
+  virtual ~ForceModel() = default;
+  virtual const std::string& name() const = 0;
+  virtual unsigned needs() const = 0;
+  // The model's force on particle p (a fresh ParticleForce: the caller sums the models).
+  virtual ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const = 0;
+  // One line describing the settings (logged at start-up).
+  virtual std::string describe() const = 0;
+
+  // Builds the model `name`; its settings come from the sub-dictionary `<name>Coeffs` (absent:
+  // defaults). Throws InputError naming the file and the allowed models on an unknown name.
+  static std::unique_ptr<ForceModel> New(const std::string& name, const Dictionary& properties,
+                                         const ForceContext& context);
+  static std::vector<std::string> available();
+};
+
+// Factories of the built-in models (one source file each).
+std::unique_ptr<ForceModel> makeDiFeliceDrag(const Dictionary& coeffs, const ForceContext& c);
+std::unique_ptr<ForceModel> makeBuoyancy(const Dictionary& coeffs, const ForceContext& c);
+std::unique_ptr<ForceModel> makeViscousForce(const Dictionary& coeffs, const ForceContext& c);
+std::unique_ptr<ForceModel> makeGidaspowDrag(const Dictionary& coeffs, const ForceContext& c);
+
+// Di Felice (1994) drag coefficient pieces, exposed for tests.
+struct DiFeliceTerms {
+  double reynolds;  // Re_p = rho d eps_f |U - v| / mu
+  double chi;       // 3.7 - 0.65 exp(-(1.5 - log10 Re_p)^2 / 2)
+  double beta;      // F_d = beta (U - v)
+};
+// `divideByVoidfraction` turns the drag of Li & Zhao's Eq. 10 (formulation A's drag) into the
+// formulation-B drag F_d / eps_f (Zhou et al. 2010; see DiFeliceDrag.cpp).
+DiFeliceTerms diFelice(double diameter, double rho, double mu, double voidfraction, double slip,
+                       bool divideByVoidfraction);
+
+// Gidaspow (Ergun / Wen-Yu) implicit drag coefficient [kg/s] (GidaspowDrag.cpp).
+double gidaspowBeta(double diameter, double rho, double mu, double voidfraction, double slip,
+                    double switchVoidfraction, bool divideByVoidfraction);
+
+}  // namespace mixflow::coupling

@@ -1,0 +1,161 @@
+// mixflowCoupled: two-way CFD-DEM coupling in one process -- mixflowFoam's fluid (OpenFOAM VOF,
+// formulation B; cfd/README.md) and LIGGGHTS particles driven as a library, exchanging every
+// exchangeEvery DEM steps (one CFD step). The fluid algorithm is mixflowFoam's own: this file is
+// mixflowFoam.cpp's time loop with the coupling inserted where updateCouplingFields.H expects it,
+// and it includes mixflowFoam's step files unchanged (cfd/mixflowFoam/*.H).
+//
+// Case: an interFoam/mixflowFoam case plus constant/couplingProperties (coupling/README.md) and
+// the particle scene as LIGGGHTS commands (its demScript, e.g. system/in.liggghts).
+//
+// Order of one step (t -> t + dt, dt = exchangeEvery x DEM dt):
+//   1. DEM runs exchangeEvery steps with the fluid forces of the last exchange held constant;
+//   2. exchange at the particles' new positions: eps_f(t + dt), forces from the fluid at t
+//      (the particles' forces for the next interval, the fluid's Ksl/Us/fSource for this step);
+//   3. the fluid step (PIMPLE) with those fields.
+// Before the loop one exchange sets eps_f(0) and the first interval's forces.
+//
+// MPI: LIGGGHTS needs MPI; OpenFOAM initialises it only with -parallel, so a serial run calls
+// MPI_Init here (v1912's Pstream accepts an MPI that is already initialised).
+
+#include <mpi.h>
+
+#include <cstring>
+
+// clang-format off
+#include "CMULES.H"
+#include "EulerDdtScheme.H"
+#include "Function1.H"
+#include "fvCFD.H"
+#include "fvOptions.H"
+#include "gaussConvectionScheme.H"
+#include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "pimpleControl.H"
+#include "subCycle.H"
+#include "turbulentTransportModel.H"
+#include "upwind.H"
+#include "FoamCoupling.H"
+// clang-format on
+
+namespace {
+
+int runCoupled(int argc, char* argv[]) {
+  argList::addNote(
+      "mixflowCoupled: mixflowFoam (VOF, formulation B) two-way coupled with LIGGGHTS particles "
+      "(constant/couplingProperties)");
+
+  // clang-format off
+#include "setRootCase.H"
+#include "createTime.H"
+#include "createMesh.H"
+#include "createPimpleControl.H"
+#include "createTimeControls.H"
+#include "initContinuityErrs.H"
+#include "createFields.H"
+#include "checkSchemes.H"
+#include "createAlphaFluxes.H"
+#include "createFvOptions.H"
+  // clang-format on
+
+  if (particleRamp.valid()) {
+    FatalErrorInFunction << "particleRamp (mixflowProperties) is a standalone verification mode; "
+                            "remove it for a coupled run"
+                         << exit(FatalError);
+  }
+
+  mixflow::coupling::FoamCoupling coupling(mesh, voidfraction, Ksl, Us, fSource, U, rho, p, mixture,
+                                           turbulence(), g, voidfractionMin, viscousStress);
+  coupling.exchange();  // eps_f at the start time, forces for the first DEM interval
+  // The particles were there before the start: eps_f(0) is also the old-time level (otherwise
+  // d(eps_f)/dt of the start would see the change from the field read at construction).
+  voidfraction.oldTime() == voidfraction;
+  {
+    // clang-format off
+#include "updateCouplingFields.H"
+    // clang-format on
+  }
+
+  // clang-format off
+#include "initCorrectPhi.H"
+  // clang-format on
+
+  turbulence->validate();
+
+  {
+  // clang-format off
+#include "CourantNo.H"
+      // clang-format on
+  }
+
+      Info
+      << "\nStarting time loop\n"
+      << endl;
+
+  while (runTime.run()) {
+    // clang-format off
+#include "readTimeControls.H"
+#include "courantNumbers.H"
+    // clang-format on
+
+    ++runTime;
+
+    Info << "Time = " << runTime.timeName() << nl << endl;
+
+    coupling.evolve();  // DEM interval, then exchange at the new positions
+
+    // clang-format off
+#include "updateCouplingFields.H"
+#include "correctPhiVoidfraction.H"
+    // clang-format on
+
+    // --- Pressure-velocity PIMPLE corrector loop
+    while (pimple.loop()) {
+      // clang-format off
+#include "alphaControls.H"
+#include "alphaEqnSubCycle.H"
+      // clang-format on
+
+      mixture.correct();
+
+      if (pimple.frozenFlow()) {
+        continue;
+      }
+
+      // clang-format off
+#include "UEqn.H"
+      // clang-format on
+
+      // --- Pressure corrector loop
+      while (pimple.correct()) {
+        // clang-format off
+#include "pEqn.H"
+        // clang-format on
+      }
+
+      if (pimple.turbCorr()) {
+        turbulence->correct();
+      }
+    }
+
+    runTime.write();
+
+    runTime.printExecutionTime(Info);
+  }
+
+  Info << "End\n" << endl;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char* argv[]) {
+  bool parallel = false;
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "-parallel") == 0) parallel = true;
+  // With -parallel OpenFOAM initialises (and finalises) MPI itself.
+  if (!parallel) MPI_Init(&argc, &argv);
+  const int status = runCoupled(argc, argv);
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!parallel && !finalized) MPI_Finalize();
+  return status;
+}

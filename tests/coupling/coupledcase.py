@@ -1,0 +1,260 @@
+"""Case writer for mixflowCoupled tests: a closed 3-D box (one blockMesh block, uniform cells,
+all faces no-slip walls, y up, g = (0, -9.81, 0)) filled with liquid or part liquid/part air,
+plus constant/couplingProperties and the particle scene as LIGGGHTS commands (system/in.liggghts).
+
+Standard library only; OpenFOAM file helpers come from tests/cfd/foamcase.py.
+"""
+
+import csv
+import math
+import os
+import shutil
+import sys
+
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cfd"))
+import foamcase as fc  # noqa: E402
+
+G = 9.81
+
+
+class Box:
+    """[0, Lx] x [0, Ly] x [0, Lz] with nx x ny x nz cells; cell (i, j, k) = i + nx (j + ny k)."""
+
+    def __init__(self, L, n):
+        self.L, self.n = tuple(L), tuple(n)
+        self.h = tuple(L[a] / n[a] for a in range(3))
+
+    @property
+    def ncells(self):
+        return self.n[0] * self.n[1] * self.n[2]
+
+    @property
+    def cell_volume(self):
+        return self.h[0] * self.h[1] * self.h[2]
+
+    def centres(self):
+        nx, ny, nz = self.n
+        for k in range(nz):
+            for j in range(ny):
+                for i in range(nx):
+                    yield ((i + 0.5) * self.h[0], (j + 0.5) * self.h[1], (k + 0.5) * self.h[2])
+
+
+def block_mesh_dict(box, open_top=False):
+    Lx, Ly, Lz = box.L
+    nx, ny, nz = box.n
+    top = "patch" if open_top else "wall"
+    return f"""convertToMeters 1;
+vertices
+(
+    (0 0 0) ({Lx} 0 0) ({Lx} {Ly} 0) (0 {Ly} 0)
+    (0 0 {Lz}) ({Lx} 0 {Lz}) ({Lx} {Ly} {Lz}) (0 {Ly} {Lz})
+);
+blocks ( hex (0 1 2 3 4 5 6 7) ({nx} {ny} {nz}) simpleGrading (1 1 1) );
+edges ();
+boundary
+(
+    walls {{ type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (0 3 2 1) (4 5 6 7) ); }}
+    top {{ type {top}; faces ( (3 7 6 2) ); }}
+);
+mergePatchPairs ();
+"""
+
+
+CONTROL = """application     mixflowCoupled;
+startFrom       startTime;
+startTime       0;
+stopAt          endTime;
+endTime         {end};
+deltaT          {dt};
+writeControl    timeStep;
+writeInterval   {wsteps};
+purgeWrite      0;
+writeFormat     ascii;
+writePrecision  17;
+writeCompression off;
+timeFormat      general;
+timePrecision   8;
+runTimeModifiable no;
+adjustTimeStep  no;
+maxCo           1;
+maxAlphaCo      1;
+maxDeltaT       1;
+"""
+
+SCHEMES = """ddtSchemes { default Euler; }
+gradSchemes { default Gauss linear; }
+divSchemes
+{
+    div(rhoPhi,U)  Gauss linearUpwind grad(U);
+    div(phi,alpha)  Gauss vanLeer;
+    div(phirb,alpha) Gauss linear;
+    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;
+}
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+"""
+
+SOLUTION = """solvers
+{
+    "alpha.water.*"
+    {
+        nAlphaCorr      2;
+        nAlphaSubCycles 1;
+        cAlpha          1;
+        MULESCorr       yes;
+        nLimiterIter    5;
+        solver          smoothSolver;
+        smoother        symGaussSeidel;
+        tolerance       1e-10;
+        relTol          0;
+    }
+    "pcorr.*" { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; }
+    p_rgh { solver PCG; preconditioner DIC; tolerance {ptol}; relTol 0; }
+    p_rghFinal { $p_rgh; relTol 0; }
+    "U.*" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; }
+}
+PIMPLE
+{
+    momentumPredictor   no;
+    nOuterCorrectors    1;
+    nCorrectors         3;
+    nNonOrthogonalCorrectors 0;
+    pRefCell 0;
+    pRefValue 0;
+}
+relaxationFactors { equations { ".*" 1; } }
+"""
+
+
+def transport(rho_l, nu_l):
+    return (f"phases (water air);\nwater\n{{\n    transportModel Newtonian; nu {nu_l!r}; "
+            f"rho {rho_l!r};\n}}\n"
+            "air\n{\n    transportModel Newtonian; nu 1.48e-05; rho 1;\n}\nsigma 0.07;\n")
+
+
+def liggghts_header(box, dt, skin, young=5e6, restitution=0.5, friction=0.5):
+    """Box = the fluid mesh's bounding box; one particle type; Hertz contacts; gravity as constant/g."""
+    Lx, Ly, Lz = box.L
+    return f"""units si
+atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+region domain block 0 {Lx!r} 0 {Ly!r} 0 {Lz!r} units box
+create_box 1 domain
+neighbor {skin!r} bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype {young!r}
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 {restitution!r}
+fix m4 all property/global coefficientFriction peratomtypepair 1 {friction!r}
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep {dt!r}
+fix gravi all gravity {G!r} vector 0 -1 0
+"""
+
+
+def write_case(case, box, end, dt_cfd, dem_script, coupling, rho_l=1000.0, nu_l=1e-6,
+               liquid_height=None, ptol="1e-10", write_steps=None, mixflow_properties=None,
+               open_top=False):
+    """open_top: the lid y = Ly is open to the atmosphere (total pressure 0, air in/outflow),
+    else a no-slip wall like the other faces."""
+    shutil.rmtree(case, ignore_errors=True)
+    os.makedirs(case)
+    fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict",
+                       block_mesh_dict(box, open_top))
+    nsteps = int(round(end / dt_cfd))
+    fc.write_foam_file(case, "system/controlDict", "dictionary", "controlDict",
+                       CONTROL.format(end=repr(end), dt=repr(dt_cfd),
+                                      wsteps=write_steps or nsteps))
+    fc.write_foam_file(case, "system/fvSchemes", "dictionary", "fvSchemes", SCHEMES)
+    fc.write_foam_file(case, "system/fvSolution", "dictionary", "fvSolution",
+                       SOLUTION.replace("{ptol}", ptol))
+    fc.write_foam_file(case, "constant/transportProperties", "dictionary", "transportProperties",
+                       transport(rho_l, nu_l))
+    fc.write_foam_file(case, "constant/turbulenceProperties", "dictionary",
+                       "turbulenceProperties", "simulationType laminar;\n")
+    fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",
+                       f"dimensions [0 1 -2 0 0 0 0];\nvalue (0 {-G!r} 0);\n")
+    fc.write_foam_file(case, "constant/couplingProperties", "dictionary", "couplingProperties",
+                       coupling)
+    if mixflow_properties:
+        fc.write_foam_file(case, "constant/mixflowProperties", "dictionary", "mixflowProperties",
+                           mixflow_properties)
+    with open(os.path.join(case, "system", "in.liggghts"), "w") as f:
+        f.write(dem_script)
+
+    def wall(e, top=None):
+        top = top if (open_top and top) else e
+        return f"boundaryField\n{{\n    walls {{ {e} }}\n    top {{ {top} }}\n}}\n"
+    if liquid_height is None:
+        alpha = "uniform 1"
+    else:
+        alpha = fc.format_scalar_list([
+            min(max((liquid_height - (c[1] - 0.5 * box.h[1])) / box.h[1], 0.0), 1.0)
+            for c in box.centres()])
+    fc.write_foam_file(case, "0/alpha.water", "volScalarField", "alpha.water",
+                       f"dimensions [0 0 0 0 0 0 0];\ninternalField {alpha};\n" +
+                       wall("type zeroGradient;",
+                            "type inletOutlet; inletValue uniform 0; value uniform 0;"))
+    fc.write_foam_file(case, "0/U", "volVectorField", "U",
+                       "dimensions [0 1 -1 0 0 0 0];\ninternalField uniform (0 0 0);\n" +
+                       wall("type noSlip;",
+                            "type pressureInletOutletVelocity; value uniform (0 0 0);"))
+    fc.write_foam_file(case, "0/p_rgh", "volScalarField", "p_rgh",
+                       "dimensions [1 -1 -2 0 0 0 0];\ninternalField uniform 0;\n" +
+                       wall("type fixedFluxPressure; value uniform 0;",
+                            "type totalPressure; p0 uniform 0;"))
+
+
+def run(case, solver, blockmesh, np=1, mpiexec=None, decomposepar=None, reconstructpar=None,
+        log="log.mixflowCoupled"):
+    """blockMesh, then the solver serially or on np ranks (simple decomposition in np slabs along
+    x; the coupling gives LIGGGHTS the matching processor grid); reconstructPar if given."""
+    fc.run([blockmesh], case, "log.blockMesh")
+    if np <= 1:
+        return fc.run([solver], case, log)
+    fc.set_decomposition(case, np)
+    fc.run([decomposepar or "decomposePar", "-force"], case, "log.decomposePar")
+    text = fc.run(fc.launcher_tokens(mpiexec or "mpirun --allow-run-as-root --oversubscribe") +
+                  ["-x", "WM_PROJECT_DIR", "-np", str(np), solver, "-parallel"], case, log)
+    if reconstructpar:
+        fc.run([reconstructpar], case, "log.reconstructPar")
+    return text
+
+
+def add_parallel_args(ap):
+    ap.add_argument("--np", type=int, default=1, help="MPI ranks (simple decomposition along x)")
+    ap.add_argument("--mpiexec", default="mpirun --allow-run-as-root --oversubscribe")
+    ap.add_argument("--decomposepar", default="decomposePar")
+    ap.add_argument("--reconstructpar", default="reconstructPar")
+
+
+def read_exchange_log(case):
+    """postProcessing/coupling/exchange.csv as a list of dicts of floats."""
+    path = os.path.join(case, "postProcessing", "coupling", "exchange.csv")
+    with open(path) as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    if not rows:
+        fc.fail(f"{path} has no rows")
+    return [{k: float(v) for k, v in r.items()} for r in rows]
+
+
+def read_reference(path, key_col, key):
+    """Row of a shared/reference CSV ('#' comments, header, "..." quoting) whose key_col == key."""
+    with open(path) as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    for r in rows:
+        if r[key_col] == key:
+            return r
+    fc.fail(f"{path}: no row with {key_col} = {key}")
+
+
+def check(ok, what):
+    print(("  PASS " if ok else "  FAIL ") + what, flush=True)
+    return ok

@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Issue 4 test 5: a settled bed in still liquid (formulation B consistency, physics.md section 3).
+
+Case: a box 3 x 6 x 3 cm of 6 mm cells (3 dp), open to the atmosphere at the top, water up to
+4.5 cm, at rest; a bed of 4 layers of 15 x 15 glass spheres (d 2 mm, 2500 kg/m3) in simple-cubic
+contact on the floor (8 mm high: eps_f 0.476 in the bottom cell row, 0.825 in the next, where the
+bed surface cuts the cells). The spheres settle into their contact overlaps (Hertz, E 5 MPa) and
+must then stay at rest. Frictionless contacts (so that the side walls carry no weight by
+friction), restitution 0.3.
+Forces: DiFeliceDrag, buoyancy, viscousForce; voidFractionModel divided (no eps_f clipping).
+LIGGGHTS stores the floor's force on each particle (wall/gran ... store_force yes) and writes
+its sum (dem/floor.txt, every exchange).
+
+Checks at the end (--end, default 0.5 s), averaged over the last 0.1 s where noted:
+  - the bed is at rest: mean |v_y| of the particles <= 1e-4 m/s (from exchange.csv);
+  - the floor carries the bed's buoyant weight (rho_s - rho_l) g V_s within 1 % (0.1 s mean);
+  - the liquid is at rest: max |U| in cells with alpha > 0.99 <= 1e-5 m/s (measured 1.4e-7);
+  - the liquid is hydrostatic through the bed: dp/dy = -rho_l g within 1e-5 (relative) between
+    vertically adjacent all-liquid cells (alpha > 0.999), bed cells included.
+A double-counted or missing buoyancy fails both the floor and the pressure checks: --models
+DiFeliceDrag (no buoyancy; registered as a negative control with --expect-fail) makes the floor
+carry the full weight (+67 %).
+"""
+
+import argparse
+import math
+import os
+import sys
+
+sys.dont_write_bytecode = True
+import coupledcase as cc  # noqa: E402
+import foamcase as fc  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--solver", required=True)
+    ap.add_argument("--blockmesh", required=True)
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--models", default="DiFeliceDrag buoyancy viscousForce")
+    ap.add_argument("--end", type=float, default=0.5)
+    ap.add_argument("--layers", type=int, default=4)
+    ap.add_argument("--expect-fail", action="store_true",
+                    help="negative control: pass only if the floor or pressure check fails")
+    cc.add_parallel_args(ap)
+    a = ap.parse_args()
+
+    d, rho_p, rho_l = 2e-3, 2500.0, 1000.0
+    box = cc.Box((0.03, 0.06, 0.03), (5, 10, 5))
+    dt_dem, every = 1e-5, 100
+    # Simple-cubic packing of spheres in contact (spacing d), touching the side walls and the
+    # floor: the bed starts settled and the liquid at rest (a bed that falls in first leaves the
+    # free surface sloshing for many seconds in water).
+    m = int(round(box.L[0] / d))
+    atoms = [((i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d)
+             for j in range(a.layers) for i in range(m) for k in range(m)]
+    Lx, Ly, Lz = box.L
+    dem = cc.liggghts_header(box, dt_dem, skin=0.25 * d, restitution=0.3, friction=0.0) + f"""fix wylo all wall/gran model hertz tangential history primitive type 1 yplane 0.0 store_force yes
+fix wxlo all wall/gran model hertz tangential history primitive type 1 xplane 0.0
+fix wxhi all wall/gran model hertz tangential history primitive type 1 xplane {Lx!r}
+fix wzlo all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix wzhi all wall/gran model hertz tangential history primitive type 1 zplane {Lz!r}
+fix integr all nve/sphere
+""" + "".join(f"create_atoms 1 single {x!r} {y!r} {z!r} units box\n" for x, y, z in atoms) + \
+        f"set group all diameter {d!r} density {rho_p!r}\n" + \
+        f"compute floorForce all reduce sum f_force_wylo[2]\n" + \
+        f"fix floorOut all ave/time 1 {every} {every} c_floorForce file dem/floor.txt\n"
+    coupling = f"""demScript "system/in.liggghts";
+exchangeEvery {every};
+forceModels ({a.models});
+voidFractionModel divided;
+"""
+    case = os.path.join(a.workdir, "case")
+    cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=1e-6,
+                  liquid_height=0.045, open_top=True)
+    os.makedirs(os.path.join(case, "dem"), exist_ok=True)
+    cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec, decomposepar=a.decomposepar,
+           reconstructpar=a.reconstructpar)
+
+    rows = cc.read_exchange_log(case)
+    t_end = rows[-1]["time"]
+    win = [r for r in rows if r["time"] >= t_end - 0.1]
+    vmean = max(abs(r["meanVy"]) for r in win)
+    floor = []
+    with open(os.path.join(case, "dem", "floor.txt")) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            floor.append(tuple(float(v) for v in line.split()[:2]))
+    n_floor = max(1, int(round(0.1 / (every * dt_dem))))
+    f_floor = sum(v for _, v in floor[-n_floor:]) / len(floor[-n_floor:])
+    vs = len(atoms) * math.pi * d ** 3 / 6
+    buoyant_weight = (rho_p - rho_l) * cc.G * vs
+
+    tdir = fc.latest_time(case)
+    n = box.ncells
+    rd = lambda name: fc.read_internal_field(os.path.join(case, tdir, name), n)
+    alpha, U, p, eps = rd("alpha.water"), rd("U"), rd("p"), rd("voidfraction")
+    umax = max(math.sqrt(sum(c * c for c in U[c])) for c in range(n) if alpha[c] > 0.99)
+    nx, ny, nz = box.n
+    worst, npairs, eps_min = 0.0, 0, min(eps)
+    for k in range(nz):
+        for i in range(nx):
+            for j in range(ny - 1):
+                c0, c1 = i + nx * (j + ny * k), i + nx * (j + 1 + ny * k)
+                if alpha[c0] > 0.999 and alpha[c1] > 0.999:
+                    g = (p[c1] - p[c0]) / box.h[1]
+                    worst = max(worst, abs(g + rho_l * cc.G) / (rho_l * cc.G))
+                    npairs += 1
+    print(f"{len(atoms)} particles, V_s {vs:.5g} m3; end {t_end} s: max |mean v_y| (last 0.1 s) "
+          f"{vmean:.3g} m/s, mean y {rows[-1]['meanY'] * 1e3:.2f} mm, min eps_f {eps_min:.3f}; "
+          f"floor {f_floor:.6g} N vs (rho_s - rho_l) g V_s {buoyant_weight:.6g} N; liquid max |U| "
+          f"{umax:.3g} m/s; dp/dy worst {worst:.3g} rel over {npairs} pairs")
+    ok = True
+    ok &= cc.check(vmean <= 1e-4, f"bed at rest: |mean v_y| {vmean:.3g} <= 1e-4 m/s")
+    floor_ok = abs(f_floor - buoyant_weight) <= 0.01 * buoyant_weight
+    ok &= cc.check(floor_ok, f"floor carries the buoyant weight: {f_floor:.6g} N vs "
+                   f"{buoyant_weight:.6g} N, {100 * (f_floor / buoyant_weight - 1):+.3f} % (tol 1 %)")
+    ok &= cc.check(umax <= 1e-5, f"liquid at rest: max |U| {umax:.3g} <= 1e-5 m/s")
+    p_ok = worst <= 1e-5 and npairs > 0
+    ok &= cc.check(p_ok, f"hydrostatic through the bed: worst |dp/dy + rho_l g| / rho_l g = "
+                   f"{worst:.3g} (tol 1e-5)")
+    if a.expect_fail:
+        caught = not (floor_ok and p_ok)
+        cc.check(caught, "negative control: the floor/pressure checks must reject this run")
+        sys.exit(0 if caught else 1)
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
