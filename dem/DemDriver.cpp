@@ -277,7 +277,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
     series.open(csv, appendSeries ? std::ios::app : std::ios::trunc);
     if (!appendSeries)
       series << "time_s,particles,deleted_outlet,deleted_top,lost,front_x_m,runout_m,"
-                "ke_translational_J,ke_rotational_J,pe_J\n";
+                "front_thickness_x_m,ke_translational_J,ke_rotational_J,pe_J\n";
   }
   long expected = 0;
   auto sample = [&](double t) {
@@ -294,10 +294,15 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
     if (rank_ == 0) {
       rep.front = granularFront(centres, rad, s.dem.frontGapDiameters * d, periodicWidth);
       rep.runout = rep.front - s.sample.length;
+      // Second rule: where the width-averaged deposit thins below one grain (robust to a sparse
+      // tail).
+      const Profile prof = depositProfile(centres, rad, s.sample.width, d, 2 * d, s.channel.length,
+                                          s.sample.solidFraction);
+      rep.frontThickness = thicknessFront(prof, d, s.sample.length, d);
       series << fmt(t) << ',' << e.count << ',' << rep.deletedOutlet << ',' << rep.deletedTop << ','
              << rep.lost << ',' << fmt(rep.front) << ',' << fmt(rep.runout) << ','
-             << fmt(e.kineticTranslational) << ',' << fmt(e.kineticRotational) << ','
-             << fmt(e.potential) << '\n'
+             << fmt(rep.frontThickness) << ',' << fmt(e.kineticTranslational) << ','
+             << fmt(e.kineticRotational) << ',' << fmt(e.potential) << '\n'
              << std::flush;
     }
     return e;
@@ -369,6 +374,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
         << fmt(t) << '\n';
   }
   MPI_Bcast(&rep.front, 1, MPI_DOUBLE, 0, comm_);
+  MPI_Bcast(&rep.frontThickness, 1, MPI_DOUBLE, 0, comm_);
   rep.runout = rep.front - s.sample.length;
   return rep;
 }
@@ -404,6 +410,8 @@ void DemDriver::writeSummary(const SettleReport& st, const CollapseReport& c) co
     << "  \"front_x_m\": " << fmt(c.front) << ",\n"
     << "  \"runout_m\": " << fmt(c.runout) << ",\n"
     << "  \"normalised_runout\": " << fmt(c.runout / s.sample.length) << ",\n"
+    << "  \"front_thickness_x_m\": " << fmt(c.frontThickness) << ",\n"
+    << "  \"runout_thickness_m\": " << fmt(c.frontThickness - s.sample.length) << ",\n"
     << "  \"particles_remaining\": " << c.remaining << ",\n"
     << "  \"deleted_outlet\": " << c.deletedOutlet << ",\n"
     << "  \"deleted_top\": " << c.deletedTop << ",\n"

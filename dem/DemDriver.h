@@ -27,7 +27,8 @@ struct CollapseReport {
   double endTime = 0;
   std::string stopReason;
   double front = 0;
-  double runout = 0;  // front - L
+  double runout = 0;          // front - L
+  double frontThickness = 0;  // end of the deposit at least one grain thick (thicknessFront)
   long remaining = 0, deletedOutlet = 0, deletedTop = 0, lost = 0;
 };
 

@@ -148,6 +148,12 @@ Profile depositProfile(const std::vector<std::array<double, 3>>& centres, double
   return p;
 }
 
+double thicknessFront(const Profile& p, double dx, double xStart, double minHeight) {
+  for (size_t i = 0; i < p.x.size(); ++i)
+    if (p.x[i] > xStart && p.hTop[i] < minHeight) return std::max(xStart, p.x[i] - 0.5 * dx);
+  return p.x.empty() ? xStart : p.x.back() + 0.5 * dx;
+}
+
 VelocityProfile velocityProfile(const ParticleView& p, double x0, double halfWidth, double dy,
                                 double ymax, MPI_Comm comm) {
   const int ny = static_cast<int>(std::ceil(ymax / dy));

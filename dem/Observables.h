@@ -48,6 +48,10 @@ struct Profile {
 Profile depositProfile(const std::vector<std::array<double, 3>>& centres, double radius,
                        double width, double dx, double dz, double xmax, double packingFraction);
 
+// Front of the deposit by thickness: the first bin beyond xStart whose hTop is below minHeight ends
+// the deposit; returns that bin's left edge (xStart if the first bin is already thin).
+double thicknessFront(const Profile& p, double dx, double xStart, double minHeight);
+
 // Mean u_x of particles whose centre lies within |x - x0| <= halfWidth, on y bins of width dy.
 struct VelocityProfile {
   std::vector<double> y, u;

@@ -68,6 +68,14 @@ TEST(Observables, DepositProfileOfAFullLayer) {
   }
 }
 
+TEST(Observables, ThicknessFrontEndsWhereTheDepositThins) {
+  Profile p;
+  p.x = {0.5, 1.5, 2.5, 3.5, 4.5};
+  p.hTop = {3.0, 2.0, 1.2, 0.6, 1.0};  // the grain at 4.5 is beyond the thin bin: not counted
+  EXPECT_DOUBLE_EQ(thicknessFront(p, 1.0, 1.0, 1.0), 3.0);
+  EXPECT_DOUBLE_EQ(thicknessFront(p, 1.0, 1.0, 0.5), 5.0);  // never thinner: end of the profile
+}
+
 TEST(Observables, EnergiesOfKnownParticles) {
   double x0[3] = {0, 2, 0}, v0[3] = {3, 0, 4}, w0[3] = {0, 0, 10};
   double* x[1] = {x0};
