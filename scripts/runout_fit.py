@@ -2,8 +2,12 @@
 """Fit (l_inf - L)/L = lambda * a**alpha to finished dry-column scenes (Li & Zhao 2018 Eq. 12).
 
 usage: runout_fit.py WORKDIR OUTDIR COMMAND
-Reads WORKDIR/P-I-*/postProcessing/dem/summary.json, writes OUTDIR/runout.csv, summary.json, runout.png.
-The aspect ratio is the settled one (settled height / L), which is what the collapse actually starts from.
+Reads WORKDIR/P-I-*/postProcessing/dem/{summary.json,depositProfile.csv}, writes OUTDIR/runout.csv,
+summary.json, runout.png. The aspect ratio is the settled one (settled height / L), which is what the
+collapse actually starts from. Two runout rules are fitted (docs/parameters.md, frontGapDiameters):
+  cluster:   front of the largest connected cluster (a sparse one-grain tail counts);
+  thickness: end of the deposit at least one grain thick (the first x > L where the width-averaged
+             column top falls below d); computed here from depositProfile.csv, as mixflowDem does.
 """
 import csv
 import glob
@@ -25,6 +29,17 @@ def fit_power_law(a, r):
     return alpha, math.exp(my - alpha * mx)
 
 
+def thickness_front(profile_csv, L, d):
+    """First bin beyond L whose width-averaged column top is below one grain: its left edge."""
+    rows = list(csv.DictReader(open(profile_csv)))
+    xs = [float(r["x_m"]) for r in rows]
+    dx = xs[1] - xs[0]
+    for r, x in zip(rows, xs):
+        if x > L and float(r["h_top_m"]) < d:
+            return max(L, x - 0.5 * dx)
+    return xs[-1] + 0.5 * dx
+
+
 def main():
     work, out, command = sys.argv[1], sys.argv[2], sys.argv[3]
     rows = []
@@ -32,8 +47,10 @@ def main():
         s = json.load(open(path))
         L = s["sample"]["length_m"]
         a = s["settled"]["height_m"] / L
+        thick = thickness_front(os.path.join(os.path.dirname(path), "depositProfile.csv"), L, 0.024)
         rows.append({"case": s["case"], "H_m": s["sample"]["height_m"], "settled_height_m": s["settled"]["height_m"],
                      "a": a, "runout_m": s["runout_m"], "normalised_runout": s["runout_m"] / L,
+                     "runout_thickness_m": thick - L, "normalised_runout_thickness": (thick - L) / L,
                      "end_time_s": s["end_time_s"], "stop_reason": s["stop_reason"],
                      "particles": s["settled"]["particles"], "young_modulus_pa": s["young_modulus_pa"],
                      "time_step_s": s["time_step_s"]})
@@ -44,8 +61,12 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
-    alpha, lam = fit_power_law([r["a"] for r in rows], [r["normalised_runout"] for r in rows])
-    summary = {"alpha": alpha, "lambda": lam, "paper_alpha": 0.9884, "experiment_alpha_wide": [0.8, 1.0],
+    a_list = [r["a"] for r in rows]
+    alpha, lam = fit_power_law(a_list, [r["normalised_runout"] for r in rows])
+    alpha_t, lam_t = fit_power_law(a_list, [r["normalised_runout_thickness"] for r in rows])
+    summary = {"alpha": alpha, "lambda": lam, "front_rule": "cluster (largest connected cluster, gap 0.5 d)",
+               "alpha_thickness_front": alpha_t, "lambda_thickness_front": lam_t,
+               "paper_alpha": 0.9884, "experiment_alpha_wide": [0.8, 1.0], "lube2005_lambda": 1.2,
                "young_modulus_pa": rows[0]["young_modulus_pa"], "time_step_s": rows[0]["time_step_s"],
                "particles": [r["particles"] for r in rows], "scenes": [r["case"] for r in rows],
                "command": command}
@@ -56,9 +77,11 @@ def main():
         import matplotlib.pyplot as plt
         a = [r["a"] for r in rows]
         fig, ax = plt.subplots(figsize=(5, 4))
-        ax.loglog(a, [r["normalised_runout"] for r in rows], "o", label="mixflow")
         grid = [min(a) * 0.95 + i * (max(a) * 1.05 - min(a) * 0.95) / 50 for i in range(51)]
+        ax.loglog(a, [r["normalised_runout"] for r in rows], "o", label="cluster front")
         ax.loglog(grid, [lam * g ** alpha for g in grid], "-", label=f"fit λ={lam:.3f}, α={alpha:.3f}")
+        ax.loglog(a, [r["normalised_runout_thickness"] for r in rows], "s", label="one-grain-thick front")
+        ax.loglog(grid, [lam_t * g ** alpha_t for g in grid], "-", label=f"fit λ={lam_t:.3f}, α={alpha_t:.3f}")
         ax.loglog(grid, [1.2 * g for g in grid], "--", label="Lube et al. 2005: 1.2 a")
         ax.set_xlabel("aspect ratio a = H/L (settled)")
         ax.set_ylabel("(l∞ − L)/L")
