@@ -14,6 +14,7 @@ import glob
 import json
 import math
 import os
+import shutil
 import sys
 
 
@@ -57,6 +58,14 @@ def main():
     if len(rows) < 2:
         sys.exit("runout_fit.py: need at least two finished scenes in " + work)
     os.makedirs(out, exist_ok=True)
+    # Keep each scene's own outputs beside the fit (small CSV/JSON files).
+    for path in sorted(glob.glob(os.path.join(work, "P-I-*", "postProcessing", "dem", "summary.json"))):
+        src = os.path.dirname(path)
+        dst = os.path.join(out, "scenes", os.path.basename(os.path.dirname(os.path.dirname(src))))
+        os.makedirs(dst, exist_ok=True)
+        for name in ("summary.json", "timeSeries.csv", "depositProfile.csv", "velocityProfile.csv"):
+            if os.path.exists(os.path.join(src, name)):
+                shutil.copy(os.path.join(src, name), dst)
     with open(os.path.join(out, "runout.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
