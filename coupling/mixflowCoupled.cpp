@@ -103,38 +103,8 @@ int runCoupled(int argc, char* argv[]) {
     coupling.evolve();  // DEM interval, then exchange at the new positions
 
     // clang-format off
-#include "updateCouplingFields.H"
-#include "correctPhiVoidfraction.H"
+#include "fluidStep.H"
     // clang-format on
-
-    // --- Pressure-velocity PIMPLE corrector loop
-    while (pimple.loop()) {
-      // clang-format off
-#include "alphaControls.H"
-#include "alphaEqnSubCycle.H"
-      // clang-format on
-
-      mixture.correct();
-
-      if (pimple.frozenFlow()) {
-        continue;
-      }
-
-      // clang-format off
-#include "UEqn.H"
-      // clang-format on
-
-      // --- Pressure corrector loop
-      while (pimple.correct()) {
-        // clang-format off
-#include "pEqn.H"
-        // clang-format on
-      }
-
-      if (pimple.turbCorr()) {
-        turbulence->correct();
-      }
-    }
 
     runTime.write();
 

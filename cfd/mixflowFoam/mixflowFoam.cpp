@@ -85,38 +85,8 @@ int main(int argc, char *argv[]) {
     // The coupling sets voidfraction, Ksl, Us and fSource here (after ++runTime, so that
     // voidfraction.oldTime() is the previous step's field); standalone they keep their values.
     // clang-format off
-#include "updateCouplingFields.H"
-#include "correctPhiVoidfraction.H"
+#include "fluidStep.H"
     // clang-format on
-
-    // --- Pressure-velocity PIMPLE corrector loop
-    while (pimple.loop()) {
-      // clang-format off
-#include "alphaControls.H"
-#include "alphaEqnSubCycle.H"
-      // clang-format on
-
-      mixture.correct();
-
-      if (pimple.frozenFlow()) {
-        continue;
-      }
-
-      // clang-format off
-#include "UEqn.H"
-      // clang-format on
-
-      // --- Pressure corrector loop
-      while (pimple.correct()) {
-        // clang-format off
-#include "pEqn.H"
-        // clang-format on
-      }
-
-      if (pimple.turbCorr()) {
-        turbulence->correct();
-      }
-    }
 
     runTime.write();
 
