@@ -1,0 +1,241 @@
+#include "LiquidCase.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "Dictionary.h"
+
+namespace mixflow::cfd {
+
+namespace {
+
+std::string shortNum(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+std::string join(const std::vector<std::string>& w) {
+  std::string s;
+  for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
+  return s;
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& k) {
+  return std::find(v.begin(), v.end(), k) != v.end();
+}
+
+// Same entries and ranges as the DEM half (dem/Scene.cpp): one scene description for both.
+void readSample(const Dictionary& d, LiquidSample& s) {
+  d.allowOnly({"length", "height", "width", "solidFraction"});
+  s.length = d.scalar("length", Range::positive());
+  s.height = d.scalar("height", Range::positive());
+  s.width = d.scalar("width", Range::positive());
+  // Used by the particles of a mixture only; validated here as the DEM half does.
+  d.scalarOr("solidFraction", 0.6056, Range::openClosed(0.0, 0.64));
+}
+
+void readChannel(const Dictionary& d, LiquidChannel& c) {
+  d.allowOnly({"length", "height", "sideWalls"});
+  c.length = d.scalar("length", Range::positive());
+  c.height = d.scalar("height", Range::positive());
+  c.sideWalls = d.wordOr("sideWalls", c.sideWalls, {"walls", "periodic"});
+}
+
+// A required coefficient: a missing one is reported with its meaning, unit and allowed range.
+double required(const Dictionary& d, const std::string& key, const Range& range,
+                const std::string& meaning) {
+  if (!d.has(key)) d.fail(key, "missing (required): " + meaning + ", allowed range " + range.str());
+  return d.scalar(key, range);
+}
+
+// The liquid's parameters depend on its rheology; an entry of another rheology is named as such
+// (e.g. yieldStress for a Newtonian liquid), not just as "unknown".
+void readLiquid(const Dictionary& d, Rheology& r, AirProperties& air, double& sigma) {
+  const std::vector<std::string> models{"Newtonian", "HerschelBulkley", "Bingham"};
+  r.model = d.word("rheology", models);
+  const std::vector<std::string> common{"rheology", "density", "surfaceTension", "air"};
+  std::vector<std::string> own;
+  if (r.model == "Newtonian")
+    own = {"viscosity"};
+  else if (r.model == "HerschelBulkley")
+    own = {"yieldStress", "consistency", "flowIndex", "viscosityCap"};
+  else
+    own = {"yieldStress", "plasticViscosity", "consistency", "flowIndex", "viscosityCap"};
+  const std::vector<std::string> every{"viscosity", "yieldStress",  "consistency",
+                                       "flowIndex", "viscosityCap", "plasticViscosity"};
+  std::vector<std::string> allowed = common;
+  allowed.insert(allowed.end(), own.begin(), own.end());
+  for (const auto& k : d.keys()) {
+    if (contains(allowed, k)) continue;
+    if (contains(every, k))
+      d.fail(k,
+             "is not a parameter of rheology " + r.model + "; its entries are: " + join(allowed));
+  }
+  d.allowOnly(allowed);
+
+  r.density = required(d, "density", Range::positive(), "liquid density (kg/m3)");
+  if (r.model == "Newtonian") {
+    r.viscosity = required(d, "viscosity", Range::positive(), "dynamic viscosity mu (Pa s)");
+  } else {
+    r.yieldStress = required(d, "yieldStress", Range::nonNegative(), "yield stress tau_c (Pa)");
+    if (r.model == "HerschelBulkley") {
+      r.consistency = required(d, "consistency", Range::positive(), "consistency kappa (Pa s^n)");
+      r.flowIndex = required(d, "flowIndex", Range::positive(), "flow index n");
+    } else {
+      // Bingham: tau = tau_c + mu_p gamma_dot, i.e. Herschel-Bulkley with n = 1.
+      const bool hasMu = d.has("plasticViscosity"), hasK = d.has("consistency");
+      if (hasMu && hasK)
+        d.fail("consistency",
+               "give either plasticViscosity or consistency (the same coefficient for "
+               "Bingham), not both");
+      if (!hasMu && !hasK)
+        d.fail("plasticViscosity",
+               "missing (required): a Bingham liquid needs plasticViscosity (Pa s), allowed "
+               "range (0, inf) (or consistency, its synonym)");
+      r.consistency = d.scalar(hasMu ? "plasticViscosity" : "consistency", Range::positive());
+      if (d.has("flowIndex")) {
+        const double n = d.scalar("flowIndex", Range::positive());
+        if (n != 1.0)
+          d.fail("flowIndex", "value " + shortNum(n) +
+                                  ": a Bingham liquid has n = 1 (remove the entry, or use "
+                                  "rheology HerschelBulkley)");
+      }
+      r.flowIndex = 1.0;
+    }
+    // Regularisation: OpenFOAM's HerschelBulkley caps the apparent viscosity,
+    // nu = min(nu0, (tau0 + k gamma_dot^n) / gamma_dot). Default and its measured effect:
+    // docs/liquid-parameters.md.
+    r.viscosityCap = d.scalarOr("viscosityCap", 1e4, Range::positive());
+    const double mu1 = r.yieldStress + r.consistency;  // apparent viscosity at 1/s (Pa s)
+    if (r.viscosityCap <= mu1)
+      d.fail("viscosityCap", "value " + shortNum(r.viscosityCap) +
+                                 " Pa s must exceed the apparent viscosity at a shear rate of "
+                                 "1/s, yieldStress + consistency = " +
+                                 shortNum(mu1) +
+                                 " Pa s (a lower cap replaces the rheology by a Newtonian "
+                                 "liquid where it matters); allowed range (" +
+                                 shortNum(mu1) + ", inf)");
+  }
+  sigma = d.scalarOr("surfaceTension", sigma, Range::nonNegative());
+
+  const Dictionary a = d.subDictOrEmpty("air");
+  a.allowOnly({"density", "viscosity"});
+  air.density = a.scalarOr("density", air.density, Range::positive());
+  air.viscosity = a.scalarOr("viscosity", air.viscosity, Range::positive());
+  if (air.density >= r.density)
+    d.fail("density", "value " + shortNum(r.density) + " must exceed the air density (" +
+                          shortNum(air.density) + " kg/m3): the liquid lies under the air");
+}
+
+void readNumerics(const Dictionary& d, const Rheology& r, CfdNumerics& m, ObservableSpec& o) {
+  // A yield-stress liquid is viscous-dominated wherever it is near rest (mu up to the cap):
+  // PISO's pressure-velocity coupling then needs more correctors (measured: 3 let a capped
+  // column and a mu = 1e3 Pa s Newtonian one blow up at dt = 1e-3 s, dx = 5 mm; 10 keep them
+  // stable). docs/liquid-parameters.md.
+  if (r.yieldStressModel()) m.nCorrectors = 10;
+  d.allowOnly({"dimensions", "cellSize", "maxCo", "maxAlphaCo", "deltaT", "maxDeltaT",
+               "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",
+               "pressureTolerance", "alphaTolerance", "writeFormat", "observables"});
+  m.dimensions = static_cast<int>(d.integerOr("dimensions", m.dimensions, 2, 3));
+  if (d.has("cellSize") && d.text("cellSize") != "auto")
+    m.cellSize = d.scalar("cellSize", Range::positive());
+  // Above 1 the MULES-bounded VOF scheme loses boundedness; interFoam tutorials use 0.5 to 1.
+  m.maxCo = d.scalarOr("maxCo", m.maxCo, Range::openClosed(0.0, 1.0));
+  m.maxAlphaCo = d.scalarOr("maxAlphaCo", m.maxAlphaCo, Range::openClosed(0.0, 1.0));
+  m.deltaT = d.scalarOr("deltaT", m.deltaT, Range::positive());
+  m.maxDeltaT = d.scalarOr("maxDeltaT", m.maxDeltaT, Range::positive());
+  if (m.deltaT > m.maxDeltaT)
+    d.fail("deltaT", "value " + shortNum(m.deltaT) + " must not exceed maxDeltaT (" +
+                         shortNum(m.maxDeltaT) + " s)");
+  m.nCorrectors = static_cast<int>(d.integerOr("nCorrectors", m.nCorrectors, 1, 20));
+  m.nOuterCorrectors = static_cast<int>(d.integerOr("nOuterCorrectors", m.nOuterCorrectors, 1, 50));
+  m.momentumPredictor = d.switchOr("momentumPredictor", m.momentumPredictor);
+  m.momentumScheme =
+      d.wordOr("momentumScheme", m.momentumScheme, {"linearUpwind", "upwind", "limitedLinearV"});
+  m.pressureTolerance = d.scalarOr("pressureTolerance", m.pressureTolerance, Range::positive());
+  m.alphaTolerance = d.scalarOr("alphaTolerance", m.alphaTolerance, Range::positive());
+  m.writeFormat = d.wordOr("writeFormat", m.writeFormat, {"ascii", "binary"});
+
+  const Dictionary ob = d.subDictOrEmpty("observables");
+  ob.allowOnly({"frontThreshold", "sectionX", "minDepth"});
+  o.frontThreshold = ob.scalarOr("frontThreshold", o.frontThreshold, {0.0, 1.0, true, true});
+  o.sectionX = ob.scalarOr("sectionX", o.sectionX, Range::positive());
+  if (ob.has("minDepth") && ob.text("minDepth") != "auto")
+    o.minDepth = ob.scalar("minDepth", Range::positive());
+}
+
+}  // namespace
+
+LiquidCase LiquidCase::read(const std::string& caseDir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(caseDir)) throw InputError(caseDir + ": case directory does not exist");
+  LiquidCase c;
+  c.caseDir = caseDir;
+  c.name = fs::path(caseDir).lexically_normal().filename().string();
+  if (c.name.empty() || c.name == ".")
+    c.name = fs::absolute(caseDir).lexically_normal().parent_path().filename().string();
+
+  const Dictionary scene = Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties"));
+  scene.allowOnly({"content", "sample", "channel", "particles", "liquid"});
+  c.content = scene.word("content", {"particles", "liquid", "mixture"});
+  if (c.content == "particles")
+    scene.fail("content",
+               "'particles' needs no fluid case (run mixflowDem); mixflowPrepare prepares "
+               "content liquid or mixture");
+  readSample(scene.subDict("sample"), c.sample);
+  readChannel(scene.subDict("channel"), c.channel);
+  readLiquid(scene.subDict("liquid"), c.liquid, c.air, c.surfaceTension);
+
+  const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
+  readNumerics(cfd, c.liquid, c.numerics, c.observables);
+
+  // controlDict is rewritten by mixflowPrepare; only these two entries are the user's.
+  const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
+  c.endTime = control.scalar("endTime", Range::positive());
+  c.writeInterval = control.scalar("writeInterval", Range::positive());
+
+  // Cross-entry checks, named by the entry that has to change.
+  const Dictionary& ch = scene.subDict("channel");
+  if (c.channel.length <= c.sample.length)
+    ch.fail("length", "value " + shortNum(c.channel.length) + " must exceed the sample length (" +
+                          shortNum(c.sample.length) +
+                          " m): the outlet lies downstream of the gate");
+  if (c.channel.height <= c.sample.height)
+    ch.fail("height", "value " + shortNum(c.channel.height) + " must exceed the sample height (" +
+                          shortNum(c.sample.height) + " m): the liquid needs air above it");
+
+  double h = c.numerics.cellSize > 0 ? c.numerics.cellSize : c.sample.height / 20.0;
+  c.nx = std::max(1, static_cast<int>(std::lround(c.channel.length / h)));
+  c.ny = std::max(1, static_cast<int>(std::lround(c.channel.height / h)));
+  c.nz = c.numerics.dimensions == 2
+             ? 1
+             : std::max(1, static_cast<int>(std::lround(c.sample.width / h)));
+  const double cellsOverH = c.sample.height / c.dy();
+  if (cellsOverH < 4.0)
+    cfd.fail("cellSize", "value " + shortNum(h) + " m leaves " + shortNum(cellsOverH) +
+                             " cells over the sample height " + shortNum(c.sample.height) +
+                             " m; at least 4 are needed, allowed range (0, " +
+                             shortNum(c.sample.height / 4.0) + "]");
+  const double cells = double(c.nx) * c.ny * c.nz;
+  if (cells > 5e7)
+    cfd.fail("cellSize", "value " + shortNum(h) + " m gives " + shortNum(cells) +
+                             " cells (limit 5e7); use a larger cell size or dimensions 2");
+  if (c.observables.sectionX >= c.channel.length) {
+    // The paper's section (1.38 m) is outside a short test channel: no section then. A section
+    // asked for explicitly must lie inside.
+    const Dictionary ob = cfd.subDictOrEmpty("observables");
+    if (ob.has("sectionX"))
+      ob.fail("sectionX", "value " + shortNum(c.observables.sectionX) +
+                              " must lie inside the channel, allowed range (0, " +
+                              shortNum(c.channel.length) + ")");
+    c.observables.sectionX = -1;
+  }
+  return c;
+}
+
+}  // namespace mixflow::cfd

@@ -1,0 +1,98 @@
+// The fluid half of a dam-break scene, read from the same case directory as the DEM half:
+//   constant/sceneProperties  content, sample, channel (shared with mixflowDem), liquid { ... }
+//   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
+//   system/controlDict        endTime, writeInterval (read back; the file is then rewritten)
+// Every entry is validated on reading (file, entry, allowed range); defaults are listed in
+// docs/liquid-parameters.md. Units are SI as in physics.md section 2 (Pa, Pa s^n, kg/m3);
+// OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
+#pragma once
+
+#include <string>
+
+namespace mixflow::cfd {
+
+struct LiquidSample {
+  double length = 0;  // L along x (m), from the back wall x = 0 to the gate
+  double height = 0;  // H along y (m)
+  double width = 0;   // W along z (m): the channel width (side walls at z = 0, W)
+};
+
+struct LiquidChannel {
+  double length = 0;                // x extent (m): outlet at x = length
+  double height = 0;                // y extent (m): atmosphere at y = height
+  std::string sideWalls = "walls";  // walls (no-slip) | periodic (cyclic z faces, 3-D only)
+};
+
+// Rheology in SI units (physics.md section 2): tau = tau_c + kappa gamma_dot^n.
+struct Rheology {
+  std::string model;        // Newtonian | HerschelBulkley | Bingham
+  double density = 0;       // rho (kg/m3)
+  double viscosity = 0;     // Newtonian dynamic viscosity mu (Pa s)
+  double yieldStress = 0;   // tau_c (Pa)
+  double consistency = 0;   // kappa (Pa s^n); Bingham: the plastic viscosity (Pa s)
+  double flowIndex = 1;     // n
+  double viscosityCap = 0;  // regularisation mu_0 (Pa s): apparent viscosity never above it
+  bool yieldStressModel() const { return model != "Newtonian"; }
+  // OpenFOAM's kinematic coefficients (HerschelBulkley viscosity model).
+  double nu() const { return viscosity / density; }
+  double tau0() const { return yieldStress / density; }
+  double k() const { return consistency / density; }
+  double nu0() const { return viscosityCap / density; }
+};
+
+struct AirProperties {
+  double density = 1.0;        // kg/m3 (physics.md Table 2)
+  double viscosity = 1.48e-5;  // Pa s (Table 2 gives kappa = 1.48e-5 with n = 1)
+};
+
+struct CfdNumerics {
+  int dimensions = 3;        // 3: the paper's channel with side walls; 2: one cell across W (empty)
+  double cellSize = 0;       // m; 0 = auto (H / 20)
+  double maxCo = 0.5;        // flow Courant number limit of the adaptive time step
+  double maxAlphaCo = 0.5;   // interface Courant number limit
+  double deltaT = 1e-4;      // first time step (s); adapted from then on
+  double maxDeltaT = 0.01;   // largest time step (s)
+  int nCorrectors = 3;       // PISO pressure correctors per outer iteration (yield stress: 10)
+  int nOuterCorrectors = 1;  // PIMPLE outer iterations
+  // On: the viscous term is then implicit in U. Off (interFoam's damBreak) lags it in PISO's
+  // H(U), which holds a capped yield-stress liquid (mu up to viscosityCap) nearly still.
+  bool momentumPredictor = true;
+  std::string momentumScheme = "linearUpwind";  // linearUpwind | upwind | limitedLinearV
+  double pressureTolerance = 1e-7;              // p_rgh absolute tolerance (final: relTol 0)
+  double alphaTolerance = 1e-10;  // implicit alpha predictor: its residual is the only volume error
+  std::string writeFormat = "ascii";  // ascii | binary
+};
+
+struct ObservableSpec {
+  double frontThreshold = 0.5;  // alpha_l >= this counts as liquid (physics.md section 5)
+  double sectionX = 1.38;  // Froude section x (m) (Li & Zhao Eq. 15); -1: none (outside channel)
+  double minDepth = 0;     // m; below it the section Froude number is not defined; 0 = auto
+};
+
+struct LiquidCase {
+  std::string caseDir;
+  std::string name;
+  std::string content;  // liquid | mixture
+  LiquidSample sample;
+  LiquidChannel channel;
+  Rheology liquid;
+  AirProperties air;
+  double surfaceTension = 0.07;  // N/m (water-air; the paper gives none)
+  CfdNumerics numerics;
+  ObservableSpec observables;
+  double endTime = 0;
+  double writeInterval = 0;
+
+  // Mesh derived from the cell size: uniform cells fitted to the channel.
+  int nx = 0, ny = 0, nz = 0;
+  double dx() const { return channel.length / nx; }
+  double dy() const { return channel.height / ny; }
+  double dz() const { return sample.width / nz; }
+  double minDepthUsed() const {
+    return observables.minDepth > 0 ? observables.minDepth : 0.5 * dy();
+  }
+
+  static LiquidCase read(const std::string& caseDir);
+};
+
+}  // namespace mixflow::cfd

@@ -1,0 +1,235 @@
+#!/usr/bin/env python3
+"""Post-processing of scripts/liquid_results.sh (pure-liquid scenes, issue 3).
+
+  liquid_results.py --calibrate CASE T
+      prints the channel length whose outlet the water front of CASE (a W run in a long channel)
+      reaches at time T: the bed front x_f(T), interpolated in the time series, to 0.01 m.
+  liquid_results.py --make WORK OUT --channel-length LC --command CMD
+      writes into OUT: fronts.csv/.png (W, HB, B), slumps_normalised.csv/.png (HB-I, B-I: X_f/L vs
+      t/T), froude.csv/.png (Fr at x = 1.38 m vs t - t0), energies.png, regularisation.csv,
+      calibration.json and summary.json.
+
+Definitions (also in summary.json): front = largest x where the bed cell row holds alpha >= 0.5
+(postProcessing/liquid/timeSeries.csv, front_bed_m); t0 = first time the front reaches the
+section x = 1.38 m; the flow "turns subcritical" at the first time t > t0 from which Fr < 1 holds
+for at least HOLD_S seconds (or to the end of the run); Fr is undefined (nan) while the depth at
+the section is below minDepth (half a cell).
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+
+SECTION_X = 1.38
+HOLD_S = 0.2
+T_SLUMP = {"HB-I": 4.374e-4, "B-I": 4.376}  # Li & Zhao's time scales (s)
+L_SLUMP = {"HB-I": 0.5, "B-I": 0.4}
+PAPER_SUBCRITICAL = {"W": 1.2, "HB": 1.1, "B": 1.0}
+
+
+def series(case):
+    with open(os.path.join(case, "postProcessing/liquid/timeSeries.csv")) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def at(rows, key, t):
+    for r0, r1 in zip(rows, rows[1:]):
+        if r0["time_s"] <= t <= r1["time_s"]:
+            w = (t - r0["time_s"]) / (r1["time_s"] - r0["time_s"]) if r1["time_s"] > r0["time_s"] \
+                else 0.0
+            return (1 - w) * r0[key] + w * r1[key]
+    return float("nan")
+
+
+def first_time(rows, cond):
+    for r in rows:
+        if cond(r):
+            return r["time_s"]
+    return None
+
+
+def subcritical_after_arrival(rows):
+    t0 = first_time(rows, lambda r: r["front_bed_m"] >= SECTION_X)
+    if t0 is None:
+        return None, None
+    after = [r for r in rows if r["time_s"] >= t0 and not math.isnan(r["section_froude"])]
+    for i, r in enumerate(after):
+        if r["section_froude"] < 1:
+            hold = [q for q in after[i:] if q["time_s"] <= r["time_s"] + HOLD_S]
+            if all(q["section_froude"] < 1 for q in hold) and (
+                    hold[-1]["time_s"] >= r["time_s"] + HOLD_S - 0.05 or hold[-1] is after[-1]):
+                return t0, r["time_s"]
+    return t0, None
+
+
+def calibrate(case, t):
+    x = at(series(case), "front_bed_m", t)
+    if math.isnan(x):
+        sys.exit(f"no front at t = {t} s in {case}")
+    print(f"{x:.2f}")
+
+
+def make(work, out, lc, command):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    os.makedirs(out, exist_ok=True)
+    runs = {c: series(os.path.join(work, c)) for c in ("W", "HB", "B", "HB-I", "B-I")}
+    cal = series(os.path.join(work, "calibration"))
+
+    # Fronts W, HB, B.
+    tgrid = [0.01 * k for k in range(0, 401)]
+    with open(os.path.join(out, "fronts.csv"), "w") as f:
+        f.write("time_s,front_W_m,front_HB_m,front_B_m\n")
+        for t in tgrid:
+            f.write(f"{t:.2f}," + ",".join(f"{at(runs[c], 'front_bed_m', t):.4f}"
+                                          for c in ("W", "HB", "B")) + "\n")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for c, st in (("W", "-"), ("HB", "--"), ("B", ":")):
+        ax.plot([r["time_s"] for r in runs[c]], [r["front_bed_m"] for r in runs[c]], st, label=c)
+    ax.axhline(lc, color="grey", lw=0.5)
+    ax.text(0.05, lc, f" outlet x = {lc} m", va="bottom", fontsize=8)
+    ax.set(xlabel="t (s)", ylabel="liquid front x_f (m), alpha >= 0.5 on the bed",
+           title="Pure liquids W, HB, B (2-D, 0.02 m cells)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fronts.png"), dpi=120)
+    plt.close(fig)
+
+    # HB-I, B-I normalised fronts.
+    with open(os.path.join(out, "slumps_normalised.csv"), "w") as f:
+        f.write("case,time_s,t_over_T,Xf_over_L\n")
+        for c in ("HB-I", "B-I"):
+            step = max(1, len(runs[c]) // 400)
+            for r in runs[c][::step] + [runs[c][-1]]:
+                f.write(f"{c},{r['time_s']:.5g},{r['time_s'] / T_SLUMP[c]:.5g},"
+                        f"{r['front_bed_m'] / L_SLUMP[c]:.5g}\n")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for c, st in (("HB-I", "-"), ("B-I", "--")):
+        rows = [r for r in runs[c] if r["time_s"] > 0]
+        ax.semilogx([r["time_s"] / T_SLUMP[c] for r in rows],
+                    [r["front_bed_m"] / L_SLUMP[c] for r in rows], st,
+                    label=f"{c} (T = {T_SLUMP[c]:g} s)")
+    ax.set(xlabel="t / T", ylabel="X_f / L", title="Slumps HB-I, B-I (2-D)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "slumps_normalised.png"), dpi=120)
+    plt.close(fig)
+
+    # Froude number at x = 1.38 m.
+    sub, arrival = {}, {}
+    fig, ax = plt.subplots(figsize=(6, 4))
+    with open(os.path.join(out, "froude.csv"), "w") as f:
+        f.write("case,time_s,t_minus_t0_s,depth_m,velocity_m_s,froude\n")
+        for c, st in (("W", "-"), ("HB", "--"), ("B", ":")):
+            t0, ts = subcritical_after_arrival(runs[c])
+            arrival[c] = t0
+            sub[c] = None if ts is None else round(ts - t0, 3)
+            rows = [r for r in runs[c] if t0 is not None and r["time_s"] >= t0]
+            step = max(1, len(rows) // 400)
+            for r in rows[::step]:
+                f.write(f"{c},{r['time_s']:.4f},{r['time_s'] - t0:.4f},{r['section_depth_m']:.5g},"
+                        f"{r['section_velocity_m_s']:.5g},{r['section_froude']:.5g}\n")
+            ax.plot([r["time_s"] - t0 for r in rows], [r["section_froude"] for r in rows], st,
+                    label=f"{c}: subcritical after {sub[c]} s (paper {PAPER_SUBCRITICAL[c]} s)")
+    ax.axhline(1, color="grey", lw=0.5)
+    ax.set(xlabel="t - t0 (s)", ylabel="Fr = v / sqrt(g h) at x = 1.38 m", ylim=(0, 5),
+           title="Froude number at x = 1.38 m (2-D)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "froude.png"), dpi=120)
+    plt.close(fig)
+
+    # Energies of the liquid.
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for c, st in (("W", "-"), ("HB", "--"), ("B", ":")):
+        e0 = runs[c][0]["potential_energy_J"]
+        ax.plot([r["time_s"] for r in runs[c]], [r["potential_energy_J"] / e0 for r in runs[c]],
+                st, label=f"{c} E_p / E_p0")
+        ax.plot([r["time_s"] for r in runs[c]], [r["kinetic_energy_J"] / e0 for r in runs[c]],
+                st, lw=0.8, label=f"{c} E_k / E_p0")
+    ax.set(xlabel="t (s)", ylabel="energy / initial potential energy",
+           title="Liquid energies (2-D slab of width W)")
+    ax.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "energies.png"), dpi=120)
+    plt.close(fig)
+
+    # Regularisation: viscosity cap vs fronts.
+    reg = []
+    for cap in ("1e2", "1e3", "1e4", "1e5"):
+        hb = runs["HB"] if cap == "1e4" else series(os.path.join(work, f"cap-HB-{cap}"))
+        sl = series(os.path.join(work, f"cap-slump-{cap}"))
+        reg.append({"viscosityCap_Pa_s": float(cap),
+                    "HB_front_t0.5_m": round(at(hb, "front_bed_m", 0.5), 4),
+                    "HB_front_t1.0_m": round(at(hb, "front_bed_m", 1.0), 4),
+                    "HB_back_wall_depth_t4_m": round(hb[-1]["back_wall_depth_m"], 4),
+                    "slump_front_t1_m": round(at(sl, "front_bed_m", 1.0), 4),
+                    "slump_front_t4_m": round(sl[-1]["front_bed_m"], 4),
+                    "slump_front_advance_t3_t4_mm":
+                        round(1000 * (sl[-1]["front_bed_m"] - at(sl, "front_bed_m", 3.0)), 2)})
+    with open(os.path.join(out, "regularisation.csv"), "w") as f:
+        f.write(",".join(reg[0]) + "\n")
+        for r in reg:
+            f.write(",".join(str(v) for v in r.values()) + "\n")
+
+    # Calibration.
+    arrive = {x: first_time(cal, lambda r, x=x: r["front_bed_m"] >= x) for x in (4.0, 5.0, 6.0)}
+    calib = {"rule": "channel length = x_f(t = 1.25 s) of case W (2-D, 0.02 m cells) in an 8 m "
+                     "channel: the water front reaches the outlet at 1.25 s (Li & Zhao: water "
+                     "leaves the domain from about t = 1.25 s)",
+             "front_at_1.25_s_m": round(at(cal, "front_bed_m", 1.25), 3),
+             "arrival_time_s_at_x_m": {str(k): v for k, v in arrive.items()},
+             "channel_length_m": lc}
+    with open(os.path.join(out, "calibration.json"), "w") as f:
+        json.dump(calib, f, indent=2)
+        f.write("\n")
+
+    w_out = first_time(runs["W"], lambda r: r["volume_outlet_m3"] > 1e-3 * r["volume_domain_m3"])
+    summary = {
+        "subcritical_after_arrival_s": sub,
+        "paper_subcritical_after_arrival_s": PAPER_SUBCRITICAL,
+        "arrival_t0_at_1.38_m_s": arrival,
+        "channel_length_m": lc,
+        "channel_height_m": 1.2,
+        "W_outflow_starts_s": w_out,
+        "front_order_at_2s": sorted(("W", "HB", "B"),
+                                    key=lambda c: -at(runs[c], "front_bed_m", 2.0)),
+        "fidelity": "2-D (dimensions 2: one cell across the width W, no side walls), cells "
+                    "0.02 m for W/HB/B (H/30), 0.0065 m for HB-I (H/20), 0.0022 m for B-I (H/10)",
+        "definitions": {
+            "front": "largest x where the bed cell row has alpha >= 0.5 (interpolated)",
+            "t0": "first time the front reaches x = 1.38 m",
+            "subcritical": f"first t > t0 from which Fr < 1 for {HOLD_S} s; Fr = q/h / sqrt(g h) "
+                           "with h, q the width-averaged liquid depth and discharge at 1.38 m",
+        },
+        "regularisation": reg,
+        "command": command,
+    }
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    print(json.dumps({"subcritical_after_arrival_s": sub, "channel_length_m": lc}))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--calibrate", nargs=2, metavar=("CASE", "T"))
+    p.add_argument("--make", nargs=2, metavar=("WORK", "OUT"))
+    p.add_argument("--channel-length", type=float)
+    p.add_argument("--command", default="scripts/liquid_results.sh")
+    a = p.parse_args()
+    if a.calibrate:
+        calibrate(a.calibrate[0], float(a.calibrate[1]))
+    elif a.make:
+        make(a.make[0], a.make[1], a.channel_length, a.command)
+    else:
+        p.error("give --calibrate or --make")
+
+
+if __name__ == "__main__":
+    main()
