@@ -109,7 +109,7 @@ void readLiquid(const Dictionary& d, Rheology& r, AirProperties& air, double& si
     }
     // Regularisation: OpenFOAM's HerschelBulkley caps the apparent viscosity,
     // nu = min(nu0, (tau0 + k gamma_dot^n) / gamma_dot). Default and its measured effect:
-    // docs/liquid-parameters.md.
+    // docs/parameters.md (liquid scenes).
     r.viscosityCap = d.scalarOr("viscosityCap", 1e4, Range::positive());
     const double mu1 = r.yieldStress + r.consistency;  // apparent viscosity at 1/s (Pa s)
     if (r.viscosityCap <= mu1)
@@ -136,7 +136,7 @@ void readNumerics(const Dictionary& d, const Rheology& r, CfdNumerics& m, Observ
   // A yield-stress liquid is viscous-dominated wherever it is near rest (mu up to the cap):
   // PISO's pressure-velocity coupling then needs more correctors (measured: 3 let a capped
   // column and a mu = 1e3 Pa s Newtonian one blow up at dt = 1e-3 s, dx = 5 mm; 10 keep them
-  // stable). docs/liquid-parameters.md.
+  // stable). docs/parameters.md (liquid scenes).
   if (r.yieldStressModel()) m.nCorrectors = 10;
   d.allowOnly({"dimensions", "cellSize", "maxCo", "maxAlphaCo", "deltaT", "maxDeltaT",
                "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",

@@ -3,7 +3,7 @@
 //   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
 //   system/controlDict        endTime, writeInterval (read back; the file is then rewritten)
 // Every entry is validated on reading (file, entry, allowed range); defaults are listed in
-// docs/liquid-parameters.md. Units are SI as in physics.md section 2 (Pa, Pa s^n, kg/m3);
+// docs/parameters.md (liquid scenes). Units are SI as in physics.md section 2 (Pa, Pa s^n, kg/m3);
 // OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
 #pragma once
 
