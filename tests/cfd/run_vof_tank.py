@@ -167,19 +167,7 @@ maxAlphaCo      {maxco};
 maxDeltaT       {maxdt};
 """
 
-SCHEMES = """ddtSchemes { default Euler; }
-gradSchemes { default Gauss linear; }
-divSchemes
-{
-    div(rhoPhi,U)  Gauss linearUpwind grad(U);
-    div(phi,alpha)  Gauss vanLeer;
-    div(phirb,alpha) Gauss linear;
-    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-"""
+SCHEMES = fc.VOF_SCHEMES
 
 SOLUTION = """solvers
 {

@@ -83,19 +83,7 @@ maxAlphaCo      1;
 maxDeltaT       1;
 """
 
-SCHEMES = """ddtSchemes { default Euler; }
-gradSchemes { default Gauss linear; }
-divSchemes
-{
-    div(rhoPhi,U)  Gauss linearUpwind grad(U);
-    div(phi,alpha)  Gauss vanLeer;
-    div(phirb,alpha) Gauss linear;
-    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-"""
+SCHEMES = fc.VOF_SCHEMES
 
 SOLUTION = """solvers
 {
