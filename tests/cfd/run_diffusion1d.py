@@ -25,87 +25,11 @@ import argparse
 import math
 import os
 import re
-import shlex
 import shutil
-import subprocess
 import sys
 
-
-def fail(msg):
-    print(f"FAIL: {msg}", flush=True)
-    sys.exit(1)
-
-
-def run(cmd, cwd, log_name):
-    """Run cmd in cwd, output to cwd/log_name; fail with the log's tail on non-zero exit."""
-    log_path = os.path.join(cwd, log_name)
-    print(f"+ (cd {cwd} && {' '.join(shlex.quote(c) for c in cmd)}) > {log_name}", flush=True)
-    with open(log_path, "w") as log:
-        # PWD too: OpenFOAM warns "PWD is not the cwd()" when only the cwd changes.
-        env = dict(os.environ, PWD=cwd)
-        rc = subprocess.call(cmd, cwd=cwd, env=env, stdout=log, stderr=subprocess.STDOUT)
-    if rc != 0:
-        with open(log_path) as log:
-            tail = log.read()[-4000:]
-        print(tail)
-        fail(f"{cmd[0]} exited with status {rc} (log: {log_path})")
-    with open(log_path) as log:
-        return log.read()
-
-
-def time_dirs(case):
-    """Numeric time directories of a case (or processor dir), sorted by value, as (value, name)."""
-    out = []
-    for name in os.listdir(case):
-        if not os.path.isdir(os.path.join(case, name)):
-            continue
-        try:
-            out.append((float(name), name))
-        except ValueError:
-            pass
-    return sorted(out)
-
-
-def read_internal_field(path, ncells):
-    """internalField of an ASCII volScalarField file as a list of floats (uniform is expanded)."""
-    with open(path) as f:
-        text = f.read()
-    m = re.search(r"^internalField\s+uniform\s+(\S+?)\s*;", text, re.M)
-    if m:
-        return [float(m.group(1))] * ncells
-    m = re.search(r"^internalField\s+nonuniform\s+List<scalar>\s*(\d+)\s*\(", text, re.M)
-    if not m:
-        fail(f"cannot parse internalField of {path} (ASCII scalar field expected)")
-    n = int(m.group(1))
-    body_end = text.index(")", m.end())
-    values = [float(v) for v in text[m.end():body_end].split()]
-    if len(values) != n:
-        fail(f"{path}: header says {n} values, found {len(values)}")
-    return values
-
-
-def set_decomposition(case, nprocs):
-    path = os.path.join(case, "system", "decomposeParDict")
-    with open(path) as f:
-        text = f.read()
-    text, k1 = re.subn(r"numberOfSubdomains\s+\d+\s*;", f"numberOfSubdomains {nprocs};", text)
-    text, k2 = re.subn(r"\bn\s+\(\s*\d+\s+\d+\s+\d+\s*\)\s*;", f"n ({nprocs} 1 1);", text)
-    if k1 != 1 or k2 != 1:
-        fail(f"cannot set the rank count in {path}")
-    with open(path, "w") as f:
-        f.write(text)
-
-
-def set_end_time(case, end_time):
-    path = os.path.join(case, "system", "controlDict")
-    with open(path) as f:
-        text = f.read()
-    text, k1 = re.subn(r"^endTime\s+\S+;", f"endTime {end_time};", text, flags=re.M)
-    text, k2 = re.subn(r"^writeInterval\s+\S+;", f"writeInterval {end_time};", text, flags=re.M)
-    if k1 != 1 or k2 != 1:
-        fail(f"cannot set endTime in {path}")
-    with open(path, "w") as f:
-        f.write(text)
+from foamcase import (fail, launcher_tokens, read_internal_field, require_foam_env, run,
+                      set_decomposition, set_entry, time_dirs)
 
 
 def main():
@@ -131,21 +55,22 @@ def main():
     ap.add_argument("--end-time", type=float, default=1.0, help="endTime for --expect-deviation")
     a = ap.parse_args()
 
-    if "WM_PROJECT_DIR" not in os.environ:
-        fail("WM_PROJECT_DIR is not set (OpenFOAM needs it; CTest sets it from MIXFLOW_FOAM_ENV)")
+    require_foam_env()
 
     case = os.path.abspath(a.workdir)
     shutil.rmtree(case, ignore_errors=True)
     shutil.copytree(a.template, case)
     if a.expect_deviation:
-        set_end_time(case, a.end_time)
+        control = os.path.join(case, "system", "controlDict")
+        set_entry(control, "endTime", a.end_time)
+        set_entry(control, "writeInterval", a.end_time)
 
     run([a.blockmesh], case, "log.blockMesh")
 
     if a.np > 1:
         set_decomposition(case, a.np)
         run([a.decomposepar], case, "log.decomposePar")
-        launcher = [t for t in re.split(r"[;\s]+", a.mpiexec) if t]
+        launcher = launcher_tokens(a.mpiexec)
         # -x: pass OpenFOAM's environment to the ranks explicitly.
         solver_log = run(launcher + ["-x", "WM_PROJECT_DIR", "-np", str(a.np), a.solver, "-parallel"],
                          case, "log.mixflowFoamSmoke")
