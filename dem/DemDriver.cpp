@@ -279,14 +279,15 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
       series << "time_s,particles,deleted_outlet,deleted_top,lost,front_x_m,runout_m,"
                 "front_thickness_x_m,ke_translational_J,ke_rotational_J,pe_J\n";
   }
-  long expected = 0;
+  // Particles expected at the next sample: now, less what the deletion passes remove; any shortfall
+  // left the box between passes (lost). Counted here so a resumed run starts from the right value.
+  long expected = energies(lig_->particles(), kG, comm_).count;
   auto sample = [&](double t) {
     const ParticleView p = lig_->particles();
     const Energies e = energies(p, kG, comm_);
     if (!std::isfinite(e.kinetic()) || !std::isfinite(e.potential))
       throw std::runtime_error("NaN in particle energies at t = " + fmt(t) +
                                " s (outputs up to the previous sample are in " + outDir_ + ")");
-    if (expected == 0) expected = e.count;
     rep.lost += expected - e.count;  // left the box between two deletion passes
     expected = e.count;
     rep.remaining = e.count;
@@ -319,9 +320,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
     const long n = std::min(sampleEvery_, std::max(1L, std::lround((s.endTime - t) / dt_)));
     lig_->run(n);
     t = simTime();
-    const long before = expected;
-    const long gone = deleteLeavers(rep.deletedOutlet, rep.deletedTop);
-    expected = before - gone;
+    expected -= deleteLeavers(rep.deletedOutlet, rep.deletedTop);
     const Energies e = sample(t);
     if (!profileDone && t >= s.dem.profileTime - 0.5 * dt_) {
       profileDone = true;
