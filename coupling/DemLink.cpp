@@ -2,6 +2,7 @@
 
 // LIGGGHTS headers (kept out of every OpenFOAM translation unit).
 #include <atom.h>
+#include <domain.h>
 #include <fix.h>
 #include <fix_external.h>
 #include <fix_gravity.h>
@@ -23,6 +24,13 @@ DemLink::DemLink(dem::LiggghtsSession& session) : session_(session) {
   session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
   if (!session_.lammps()->atom->tag_enable)
     throw std::runtime_error("coupling: LIGGGHTS atoms need IDs (atom_modify id yes)");
+}
+
+bool DemLink::periodicZ(double& lo, double& hi) const {
+  const LAMMPS_NS::Domain* d = session_.lammps()->domain;
+  lo = d->boxlo[2];
+  hi = d->boxhi[2];
+  return d->zperiodic != 0;
 }
 
 LAMMPS_NS::FixExternal* DemLink::fix() const {

@@ -36,6 +36,8 @@ class DemLink {
 
   double timeStep() const;
   long step() const { return session_.step(); }
+  // The DEM box is periodic in z: true and its z bounds.
+  bool periodicZ(double& lo, double& hi) const;
   // Sum of the `fix gravity` accelerations (valid after the first run's setup).
   Vec3 gravity() const;
   dem::LiggghtsSession& session() { return session_; }

@@ -56,8 +56,21 @@ class FoamCellLocator final : public CellLocator {
     bounds_.max() += Foam::vector(tol, tol, tol);
   }
 
+  // A z-periodic particle box spanning the mesh's z range (a periodic slice of the width, 2-D or
+  // cyclic mesh): the part of a sphere beyond z = lo or hi belongs to the cells at the other side.
+  void setPeriodicZ(double lo, double hi) {
+    periodicZ_ = true;
+    zLo_ = lo;
+    zSpan_ = hi - lo;
+  }
+
   long findCell(const Vec3& p, long seed) const override {
-    const Foam::point q(p.x, p.y, p.z);
+    double z = p.z;
+    if (periodicZ_ && (z < zLo_ || z >= zLo_ + zSpan_)) {
+      z = zLo_ + std::fmod(z - zLo_, zSpan_);
+      if (z < zLo_) z += zSpan_;
+    }
+    const Foam::point q(p.x, p.y, z);
     if (!bounds_.contains(q)) return -1;
     if (seed >= 0 && seed < mesh_.nCells()) {
       // Fast path: the seed cell and its face neighbours, by the face-plane test.
@@ -103,6 +116,8 @@ class FoamCellLocator final : public CellLocator {
   const Foam::fvMesh& mesh_;
   Foam::meshSearch search_;
   Foam::boundBox bounds_;
+  bool periodicZ_ = false;
+  double zLo_ = 0, zSpan_ = 1;
 };
 
 [[noreturn]] void fatal(const std::string& msg) {
@@ -197,7 +212,20 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
 
   startDem();
 
-  locator_ = std::make_unique<FoamCellLocator>(mesh_);
+  auto locator = std::make_unique<FoamCellLocator>(mesh_);
+  double zLo = 0, zHi = 0;
+  if (link_->periodicZ(zLo, zHi)) {
+    const Foam::boundBox all = mesh_.bounds();  // reduced over ranks
+    const double tol = 1e-6 * (zHi - zLo);
+    if (std::abs(all.min().z() - zLo) > tol || std::abs(all.max().z() - zHi) > tol)
+      fatal("the particle box is periodic in z over [" + std::to_string(zLo) + ", " +
+            std::to_string(zHi) + "] but the mesh spans [" + std::to_string(all.min().z()) + ", " +
+            std::to_string(all.max().z()) + "]: they must match (sample width)");
+    locator->setPeriodicZ(zLo, zHi);
+    Foam::Info << "Coupling: particle box periodic in z: sphere parts beyond z = " << zLo << " or "
+               << zHi << " are wrapped into the mesh" << Foam::endl;
+  }
+  locator_ = std::move(locator);
   // Every rank's (sub)mesh box, inflated like the locator's: where R1 sends a particle.
   {
     const Foam::boundBox local(mesh_.points(), false);
@@ -292,6 +320,8 @@ void FoamCoupling::startDem() {
   std::ifstream in(script);
   if (!in) fatal("cannot open the DEM script " + script + " (demScript in couplingProperties)");
   demProcessorGrid(script);
+  // ${mixflowCase} in the script is the case directory (scripts stay valid when a case moves).
+  dem_->command("variable mixflowCase string " + caseDir);
   std::string line, pending;
   while (std::getline(in, line)) {
     const size_t hash = line.find('#');

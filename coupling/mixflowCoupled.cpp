@@ -34,6 +34,7 @@
 #include "turbulentTransportModel.H"
 #include "upwind.H"
 #include "FoamCoupling.H"
+#include "MixtureMonitor.h"
 // clang-format on
 
 namespace {
@@ -68,6 +69,14 @@ int runCoupled(int argc, char* argv[]) {
   // The particles were there before the start: eps_f(0) is also the old-time level (otherwise
   // d(eps_f)/dt of the start would see the change from the field read at construction).
   voidfraction.oldTime() == voidfraction;
+  // A mixture scene (constant/sceneProperties) also records the granular outputs of a dry scene.
+  std::unique_ptr<mixflow::coupling::MixtureMonitor> monitor;
+  try {
+    monitor = mixflow::coupling::MixtureMonitor::createIfMixture(runTime.globalPath(),
+                                                                 coupling.demSession(), std::cout);
+  } catch (const std::exception& e) {
+    FatalErrorInFunction << e.what() << exit(FatalError);
+  }
   {
     // clang-format off
 #include "updateCouplingFields.H"
@@ -77,6 +86,16 @@ int runCoupled(int argc, char* argv[]) {
   // clang-format off
 #include "initCorrectPhi.H"
   // clang-format on
+
+  // The start time's p and coupling fields (eps_f of the settled sample), so the first write
+  // time is complete for ParaView and mixflowExtract (0/ holds only the inputs otherwise).
+  if (runTime.timeIndex() == 0) {
+    p.write();
+    voidfraction.write();
+    Ksl.write();
+    Us.write();
+    fSource.write();
+  }
 
   turbulence->validate();
 
@@ -107,9 +126,11 @@ int runCoupled(int argc, char* argv[]) {
     // clang-format on
 
     runTime.write();
+    if (monitor) monitor->afterStep();
 
     runTime.printExecutionTime(Info);
   }
+  if (monitor) monitor->finish();
 
   Info << "End\n" << endl;
   return 0;

@@ -6,31 +6,20 @@
 #include <mpi.h>
 
 #include <iosfwd>
+#include <iostream>
 #include <memory>
 #include <string>
 
+#include "CollapseRecorder.h"
+#include "Dictionary.h"
 #include "LiggghtsSession.h"
 #include "Scene.h"
 
 namespace mixflow::dem {
 
-struct SettleReport {
-  long particles = 0;
-  double settledHeight = 0;   // mean over (x,z) columns of the highest particle top (m)
-  double sampleFraction = 0;  // N Vp / (L W settledHeight)
-  double bulkFraction = 0;    // measured in the interior slab 2d <= y <= settledHeight - 2d
-  double settleTime = 0;      // simulated settling time (s)
-  bool converged = false;
-};
-
-struct CollapseReport {
-  double endTime = 0;
-  std::string stopReason;
-  double front = 0;
-  double runout = 0;          // front - L
-  double frontThickness = 0;  // end of the deposit at least one grain thick (thicknessFront)
-  long remaining = 0, deletedOutlet = 0, deletedTop = 0, lost = 0;
-};
+// The settled{} sub-dictionary of dem/resume.state and dem/settled.state.
+void writeSettledDict(std::ostream& f, const SettleReport& st);
+SettleReport readSettledDict(const Dictionary& d);
 
 class DemDriver {
  public:
@@ -44,14 +33,14 @@ class DemDriver {
   // particle snapshot), e.g. after a crash or with a later endTime. Returns the settle report too.
   CollapseReport resume(SettleReport& settled);
   void writeSummary(const SettleReport& s, const CollapseReport& c) const;
+  // Saves the settled sample for a mixture scene: dem/settled.restart (LIGGGHTS restart) and
+  // dem/settled.state (what settle() reported), read by mixflowPrepare and mixflowCoupled.
+  void writeSettledState(const SettleReport& s);
   LiggghtsSession& session() { return *lig_; }
   const std::string& outputDir() const { return outDir_; }
 
  private:
   double simTime() const;
-  long deleteLeavers(long& outlet, long& top);
-  void startSnapshots();
-  void indexSnapshots(long lastStep) const;
   void writeResumeState(const CollapseReport& rep, bool profileDone);
   CollapseReport runCollapse(CollapseReport rep, bool profileDone, bool appendSeries);
   SettleReport measureSample(double settleTime, bool converged);
@@ -64,8 +53,7 @@ class DemDriver {
   std::unique_ptr<LiggghtsSession> lig_;
   double dt_ = 0;
   long step0_ = 0;  // step at which the gate opened (t = 0)
-  long snapshotEvery_ = 1;
-  long sampleEvery_ = 1;
+  std::unique_ptr<CollapseRecorder> rec_;
   int restartSlot_ = 0;
   SettleReport settled_;
 };

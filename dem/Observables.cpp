@@ -178,6 +178,37 @@ VelocityProfile velocityProfile(const ParticleView& p, double x0, double halfWid
   return out;
 }
 
+TopShear topLayerShear(const VelocityProfile& vp, double dy, int layers, long minCount) {
+  TopShear out;
+  int top = -1;
+  for (int j = static_cast<int>(vp.y.size()) - 1; j >= 0 && top < 0; --j)
+    if (vp.count[j] >= minCount) top = j;
+  if (top < 0) return out;
+  out.surface = vp.y[top] + 0.5 * dy;
+  // Bins below the top, contiguous (a gap in y ends the layer), `layers` in all.
+  double sy = 0, su = 0, syy = 0, syu = 0;
+  int n = 0;
+  for (int j = top; j >= 0 && n < layers; --j) {
+    if (j < top && vp.y[j + 1] - vp.y[j] > 1.5 * dy) break;
+    sy += vp.y[j], su += vp.u[j], syy += vp.y[j] * vp.y[j], syu += vp.y[j] * vp.u[j];
+    ++n;
+  }
+  const double den = n * syy - sy * sy;
+  if (n < 2 || den <= 0) return out;
+  out.rate = (n * syu - sy * su) / den;
+  out.valid = true;
+  return out;
+}
+
+double savagePaper(double d, double rhoS, double rhoF, double rate, double g, double tanPhi) {
+  return d * rhoS * rate * rate / (g * tanPhi * (rhoS - rhoF));
+}
+
+double savageIverson(double d, double h, double rhoS, double rhoF, double rate, double g,
+                     double tanPhi) {
+  return h > 0 ? rhoS * d * d * rate * rate / ((rhoS - rhoF) * g * h * tanPhi) : 0.0;
+}
+
 double sphereSlabVolume(double yc, double r, double a, double b) {
   const double lo = std::max(a, yc - r) - yc, hi = std::min(b, yc + r) - yc;
   if (hi <= lo) return 0.0;

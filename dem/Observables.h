@@ -60,6 +60,22 @@ struct VelocityProfile {
 VelocityProfile velocityProfile(const ParticleView& p, double x0, double halfWidth, double dy,
                                 double ymax, MPI_Comm comm);
 
+// Shear rate at the top of the granular flow from a u(y) profile on bins of height dy: the top is
+// the highest bin holding at least minCount particles; the rate is the least-squares slope du/dy
+// over that bin and the populated bins below it, `layers` bins in all. valid = false when fewer
+// than two bins qualify. surface = upper edge of the top bin (the flow depth at the section).
+struct TopShear {
+  bool valid = false;
+  double surface = 0;
+  double rate = 0;
+};
+TopShear topLayerShear(const VelocityProfile& vp, double dy, int layers, long minCount);
+// Savage number, Li & Zhao Eq. 16 as printed: d rho_s rate^2 / (g tanPhi (rho_s - rho_f)), and
+// Iverson's form with d^2 / h in place of d.
+double savagePaper(double d, double rhoS, double rhoF, double rate, double g, double tanPhi);
+double savageIverson(double d, double h, double rhoS, double rhoF, double rate, double g,
+                     double tanPhi);
+
 // Exact volume of a sphere (centre yc, radius r) between the planes y = a and y = b.
 double sphereSlabVolume(double yc, double r, double a, double b);
 

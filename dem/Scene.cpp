@@ -70,7 +70,7 @@ void readDem(const Dictionary& d, DemSpec& m) {
   d.allowOnly({"youngModulusFactor", "timeStep", "rayleighFraction", "maxRayleighFraction",
                "maxHertzFraction", "limitForce", "sampleInterval", "frontGapDiameters",
                "velocityProfile", "stopWhenArrested", "arrestKineticTolerance", "arrestMinTime",
-               "arrestFrontDiameters", "arrestWindow", "processors", "settle"});
+               "arrestFrontDiameters", "arrestWindow", "processors", "settle", "savage"});
   m.youngModulusFactor =
       d.scalarOr("youngModulusFactor", m.youngModulusFactor, Range::openClosed(0.0, 1.0));
   if (d.has("timeStep") && d.text("timeStep") != "auto")
@@ -87,6 +87,11 @@ void readDem(const Dictionary& d, DemSpec& m) {
   m.profileX = vp.scalarOr("x", m.profileX, Range::any());
   m.profileTime = vp.scalarOr("time", m.profileTime, Range::nonNegative());
   m.profileBinDiameters = vp.scalarOr("binDiameters", m.profileBinDiameters, Range::positive());
+  const Dictionary sv = d.subDictOrEmpty("savage");
+  sv.allowOnly({"x", "layers", "tanPhi"});
+  m.savageX = sv.scalarOr("x", m.savageX, Range::any());
+  m.savageLayers = static_cast<int>(sv.integerOr("layers", m.savageLayers, 2, 50));
+  m.savageTanPhi = sv.scalarOr("tanPhi", m.savageTanPhi, Range::positive());
   m.stopWhenArrested = d.switchOr("stopWhenArrested", m.stopWhenArrested);
   m.arrestKineticTolerance =
       d.scalarOr("arrestKineticTolerance", m.arrestKineticTolerance, Range::positive());
@@ -127,6 +132,10 @@ Scene Scene::read(const std::string& caseDir) {
   readSample(scene.subDict("sample"), s.sample);
   readChannel(scene.subDict("channel"), s.channel);
   if (s.content != "liquid") readParticles(scene.subDictOrEmpty("particles"), s.particles);
+  // The liquid's density enters the Savage number (rho_s - rho_f); the rest of liquid{} is the
+  // fluid half's (mixflowPrepare validates it).
+  if (s.content == "mixture")
+    s.fluidDensity = scene.subDict("liquid").scalar("density", Range::positive());
 
   const Dictionary dem = Dictionary::readFile((fs::path(caseDir) / "system/demDict"));
   readDem(dem, s.dem);

@@ -69,6 +69,12 @@ struct DemSpec {
   double arrestWindow = 0.25;
   double arrestMinTime = 0.3;        // never declare arrest before this time (s)
   std::string processors = "* * *";  // LIGGGHTS processors grid
+  // Savage number at the section x = savageX (physics.md section 5): the shear rate is the
+  // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
+  // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.
+  double savageX = 0.8;
+  int savageLayers = 3;
+  double savageTanPhi = 0.7;
 };
 
 struct Scene {
@@ -78,6 +84,7 @@ struct Scene {
   SampleSpec sample;
   ChannelSpec channel;
   ParticleMaterial particles;
+  double fluidDensity = 0;  // kg/m3: the liquid of a mixture (liquid.density); 0 for a dry scene
   SettleSpec settle;
   DemSpec dem;
   double endTime = 2.0;

@@ -2,6 +2,8 @@
 //   mixflowDem [-case DIR] [-check]            serial
 //   mpirun -np N mixflowDem -case DIR -parallel
 // -check validates the case and prints the derived time step, then stops.
+// -settleOnly settles the sample and saves it (dem/settled.restart, dem/settled.state): the first
+// step of a mixture scene, whose collapse runs in mixflowCoupled (scripts/MixtureRunFunctions).
 #include <mpi.h>
 
 #include <cstring>
@@ -15,12 +17,14 @@
 
 namespace {
 void usage() {
-  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-resume] [-parallel]\n"
+  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-resume] [-settleOnly] [-parallel]\n"
                "  Runs the dry granular dam break described by DIR/constant/sceneProperties,\n"
                "  DIR/system/demDict and DIR/system/controlDict. Outputs: DIR/postProcessing/dem,\n"
                "  DIR/VTK (ParaView), DIR/dem (LIGGGHTS logs and replay script).\n"
                "  -resume continues from the last snapshot's restart state (after a crash, or\n"
-               "  with a later endTime in system/controlDict).\n";
+               "  with a later endTime in system/controlDict).\n"
+               "  -settleOnly settles the sample and saves it to DIR/dem/settled.{restart,state}\n"
+               "  (content particles or mixture; a mixture then runs in mixflowCoupled).\n";
 }
 }  // namespace
 
@@ -29,7 +33,7 @@ int main(int argc, char** argv) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::string caseDir = ".";
-  bool checkOnly = false, resume = false;
+  bool checkOnly = false, resume = false, settleOnly = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-case" && i + 1 < argc) {
@@ -38,6 +42,8 @@ int main(int argc, char** argv) {
       checkOnly = true;
     } else if (a == "-resume") {
       resume = true;
+    } else if (a == "-settleOnly") {
+      settleOnly = true;
     } else if (a == "-parallel") {
       // Ranks come from mpirun; accepted for the OpenFOAM convention.
     } else if (a == "-help" || a == "--help") {
@@ -55,15 +61,22 @@ int main(int argc, char** argv) {
   int status = 0;
   try {
     const dem::Scene scene = dem::Scene::read(caseDir);
-    if (scene.content != "particles")
+    if (scene.content == "liquid" || (scene.content == "mixture" && !settleOnly))
       throw InputError(caseDir + "/constant/sceneProperties: entry 'content': '" + scene.content +
-                       "' needs the fluid solver; mixflowDem runs content 'particles' only");
+                       "' needs the fluid solver; mixflowDem runs content 'particles' (and "
+                       "settles a 'mixture' sample with -settleOnly)");
     if (rank == 0)
       std::cout << "[mixflowDem] case " << scene.name << ": " << scene.particleCount()
                 << " particles, time step " << scene.timeStepUsed() << " s (stability limit "
                 << scene.stableTimeStepLimit() << " s, Rayleigh time " << scene.rayleighTime()
                 << " s)" << std::endl;
-    if (!checkOnly) {
+    if (!checkOnly && settleOnly) {
+      dem::DemDriver driver(scene, MPI_COMM_WORLD, std::cout);
+      driver.writeSettledState(driver.settle());
+      if (rank == 0)
+        std::cout << "[mixflowDem] settled sample saved: " << caseDir
+                  << "/dem/settled.{restart,state}" << std::endl;
+    } else if (!checkOnly) {
       const double wall0 = MPI_Wtime();
       dem::DemDriver driver(scene, MPI_COMM_WORLD, std::cout);
       dem::SettleReport settled;

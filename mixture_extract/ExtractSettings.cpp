@@ -67,10 +67,13 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
 
   const Dictionary& g = d.subDict("grid");
   g.allowOnly({"x", "y"});
-  readAxis(g, "x", 0.0, scene.channel.length, "channel.length in constant/sceneProperties", s.x0,
-           s.x1, s.nx);
-  readAxis(g, "y", 0.0, scene.channel.height, "channel.height in constant/sceneProperties", s.y0,
-           s.y1, s.ny);
+  // The domain widened by one particle radius: grains overlap the floor and walls by their contact
+  // deflection, and a grid that starts at -r holds all of their volume.
+  const double r = scene.particles.radius();
+  readAxis(g, "x", -r, scene.channel.length + r,
+           "channel.length in constant/sceneProperties, +- one particle radius", s.x0, s.x1, s.nx);
+  readAxis(g, "y", -r, scene.channel.height + r,
+           "channel.height in constant/sceneProperties, +- one particle radius", s.y0, s.y1, s.ny);
 
   const Dictionary& w = d.subDict("windows");
   w.allowOnly({"list", "start", "end", "width"});

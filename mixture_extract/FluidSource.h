@@ -54,8 +54,10 @@ class SyntheticFluidSource : public FluidSource {
 
 // Settings of the OpenFOAM reader (extractDict `fluid { ... }`).
 struct FoamFieldNames {
-  std::string liquidFraction = "alpha.water";  // "none": alpha_l = 1
-  std::string voidFraction = "voidfraction";   // "none": eps_f = 1 (pure-liquid cases)
+  // "auto": alpha.liquid (mixflowPrepare's cases) if the time has it, else alpha.water
+  // (interFoam's tutorials); "none": alpha_l = 1.
+  std::string liquidFraction = "auto";
+  std::string voidFraction = "voidfraction";  // "none": eps_f = 1 (pure-liquid cases)
   std::string velocity = "U";
   std::string pressure = "p";  // static pressure in Pa (interFoam family)
   std::string centres = "C";   // postProcess -func writeCellCentres

@@ -227,7 +227,12 @@ FluidCells FoamFluidSource::cells(double time) const {
     const std::vector<double> U = readField(dir / names_.velocity, 3, n);
     const std::vector<double> P = readField(dir / names_.pressure, 1, n);
     std::vector<double> A(static_cast<size_t>(n), 1.0), E(static_cast<size_t>(n), 1.0);
-    if (names_.liquidFraction != "none") A = readField(dir / names_.liquidFraction, 1, n);
+    if (names_.liquidFraction == "auto")
+      A = readField(
+          dir / (std::filesystem::exists(dir / "alpha.liquid") ? "alpha.liquid" : "alpha.water"), 1,
+          n);
+    else if (names_.liquidFraction != "none")
+      A = readField(dir / names_.liquidFraction, 1, n);
     if (names_.voidFraction != "none") E = readField(dir / names_.voidFraction, 1, n);
     const size_t base = all.size();
     all.resize(base + static_cast<size_t>(n));

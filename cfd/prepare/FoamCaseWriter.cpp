@@ -101,16 +101,22 @@ std::string blockMeshDict(const LiquidCase& c) {
 
 std::string controlDict(const LiquidCase& c) {
   const CfdNumerics& m = c.numerics;
+  const bool coupled = c.coupledDeltaT > 0;
   std::ostringstream s;
-  s << "application     mixflowFoam;\n"
+  s << "application     " << (coupled ? "mixflowCoupled" : "mixflowFoam") << ";\n"
     << "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
     << "endTime         " << num(c.endTime) << ";   // read back by mixflowPrepare\n"
-    << "writeInterval   " << num(c.writeInterval) << ";   // read back by mixflowPrepare\n"
-    << "deltaT          " << num(m.deltaT) << ";\n"
-    << "writeControl    adjustable;\npurgeWrite      0;\n"
+    << "writeInterval   " << num(c.writeInterval) << ";   // read back by mixflowPrepare\n";
+  if (coupled)
+    s << "deltaT          " << num(c.coupledDeltaT)
+      << ";   // exchangeEvery x DEM step (couplingProperties, demDict)\n"
+      << "writeControl    runTime;\n";
+  else
+    s << "deltaT          " << num(m.deltaT) << ";\nwriteControl    adjustable;\n";
+  s << "purgeWrite      0;\n"
     << "writeFormat     " << m.writeFormat << ";\nwritePrecision  10;\n"
     << "writeCompression off;\ntimeFormat      general;\ntimePrecision   8;\n"
-    << "runTimeModifiable no;\nadjustTimeStep  yes;\n"
+    << "runTimeModifiable no;\nadjustTimeStep  " << (coupled ? "no" : "yes") << ";\n"
     << "maxCo           " << num(m.maxCo) << ";\n"
     << "maxAlphaCo      " << num(m.maxAlphaCo) << ";\n"
     << "maxDeltaT       " << num(m.maxDeltaT) << ";\n\n"

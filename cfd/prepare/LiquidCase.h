@@ -82,6 +82,9 @@ struct LiquidCase {
   ObservableSpec observables;
   double endTime = 0;
   double writeInterval = 0;
+  // Mixture scenes (set by mixflowPrepare from the settled sample and couplingProperties): the
+  // CFD step is fixed at exchangeEvery x DEM step and the solver is mixflowCoupled. 0: liquid.
+  double coupledDeltaT = 0;
 
   // Mesh derived from the cell size: uniform cells fitted to the channel.
   int nx = 0, ny = 0, nz = 0;

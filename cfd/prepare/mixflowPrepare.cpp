@@ -14,6 +14,7 @@
 #include "Dictionary.h"
 #include "FoamCaseWriter.h"
 #include "LiquidCase.h"
+#include "MixtureCase.h"
 
 namespace {
 void usage() {
@@ -54,13 +55,14 @@ int main(int argc, char** argv) {
 
   using namespace mixflow;
   try {
-    const cfd::LiquidCase c = cfd::LiquidCase::read(caseDir);
+    cfd::LiquidCase c = cfd::LiquidCase::read(caseDir);
+    cfd::MixtureSetup mixture;
+    if (c.content == "mixture") mixture = cfd::prepareMixture(c);
     cfd::describe(c, ranks, std::cout);
-    if (c.content == "mixture")
-      std::cout << "[mixflowPrepare] content mixture: the fluid files hold the liquid filling "
-                   "the sample box; the particles' voidfraction comes from the coupling\n";
+    if (c.content == "mixture") cfd::describeMixture(mixture, c, std::cout);
     if (!checkOnly) {
       cfd::writeFoamCase(c, ranks);
+      if (c.content == "mixture") cfd::writeMixtureDemScript(mixture);
       std::cout << "[mixflowPrepare] wrote system/{blockMeshDict,controlDict,fvSchemes,"
                    "fvSolution,decomposeParDict}, constant/{transportProperties,g,"
                    "turbulenceProperties}, 0/{alpha.liquid,U,p_rgh}"

@@ -67,9 +67,9 @@ def run_then_regrid(case):
 CASES = [
     ("no such case", None, ["-case", os.path.join(work, "does_not_exist")], ["does_not_exist", "does not exist"]),
     ("grid outside the domain", edit_dict(r"x \(0 0.3 6\)", "x (0 5 6)"), [],
-     ["system/extractDict", "grid.x", "[0, 5]", "outside the domain [0, 0.8]", "channel.length"]),
+     ["system/extractDict", "grid.x", "[0, 5]", "outside the domain [-0.006, 0.806]", "channel.length", "one particle radius"]),
     ("grid below the floor", edit_dict(r"y \(0 0.12 3\)", "y (-0.1 0.12 3)"), [],
-     ["system/extractDict", "grid.y", "outside the domain [0, 0.4]"]),
+     ["system/extractDict", "grid.y", "outside the domain [-0.006, 0.406]"]),
     ("fractional bin count", edit_dict(r"x \(0 0.3 6\)", "x (0 0.3 2.5)"), [],
      ["grid.x", "2.5", "whole number in [1, 100000]"]),
     ("empty window", edit_dict(r"\(0.05 0.1\)", "(0.052 0.058)"), [],

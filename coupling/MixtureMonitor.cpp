@@ -1,0 +1,62 @@
+#include "MixtureMonitor.h"
+
+#include <filesystem>
+#include <ostream>
+
+#include "DemDriver.h"
+#include "Dictionary.h"
+
+namespace mixflow::coupling {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<MixtureMonitor> MixtureMonitor::createIfMixture(const std::string& caseDir,
+                                                                dem::LiggghtsSession& lig,
+                                                                std::ostream& out) {
+  const fs::path props = fs::path(caseDir) / "constant" / "sceneProperties";
+  if (!fs::exists(props)) return nullptr;
+  if (Dictionary::readFile(props.string()).text("content") != "mixture") return nullptr;
+  return std::make_unique<MixtureMonitor>(dem::Scene::read(caseDir), lig, out);
+}
+
+MixtureMonitor::MixtureMonitor(const dem::Scene& scene, dem::LiggghtsSession& lig,
+                               std::ostream& out)
+    : scene_(scene), lig_(lig), out_(out) {
+  rank_ = lig.rank();
+  const fs::path state = fs::path(scene_.caseDir) / "dem" / "settled.state";
+  settled_ = dem::readSettledDict(Dictionary::readFile(state.string()).subDict("settled"));
+  // The settled sample was saved at step 0 = the gate opening (DemDriver::writeSettledState).
+  rec_ = std::make_unique<dem::CollapseRecorder>(scene_, lig_, lig_.comm(), 0, false);
+  lastSampleStep_ = lig_.step();
+  rec_->sample(rep_);
+  rec_->startSnapshots();
+  progress_ =
+      std::make_unique<Progress>("coupled " + scene_.name, rec_->time(), scene_.endTime, out_);
+}
+
+void MixtureMonitor::afterStep() {
+  if (lig_.step() - lastSampleStep_ < rec_->sampleEvery()) return;
+  lastSampleStep_ = lig_.step();
+  rec_->deleteLeavers(rep_);
+  rec_->sample(rep_);
+  rec_->profileIfDue(profileDone_);
+  rec_->indexSnapshots();
+  if (rank_ == 0)
+    progress_->update(rec_->time(), false,
+                      ", granular front " + std::to_string(rep_.front).substr(0, 6) + " m");
+}
+
+void MixtureMonitor::finish() {
+  if (lig_.step() != lastSampleStep_) {  // the end time is a row too
+    rec_->deleteLeavers(rep_);
+    rec_->sample(rep_);
+  }
+  rep_.stopReason = "endTime";
+  rec_->finish(rep_);
+  rec_->indexSnapshots();
+  rec_->writeSummary(settled_, rep_,
+                     "  \"liquid_density_kg_m3\": " + std::to_string(scene_.fluidDensity) + ",\n");
+  if (rank_ == 0) progress_->update(rec_->time(), true);
+}
+
+}  // namespace mixflow::coupling

@@ -1,0 +1,808 @@
+#!/usr/bin/env python3
+"""Report of the Table 1 scenes run by scripts/suite.py (issue 6). docs/suite.md.
+
+usage: report.py [--work runs/reference] [--out results/li_zhao_2018]
+
+Reads the finished scenes (WORK/<scene>/.done) and writes OUT/report.md, OUT/*.png and
+OUT/summary.json: liquid and granular fronts, relative velocities, kinetic energies, E_pd and E_fc
+(Eqs. 13-14), fluid-particle forces, Froude and Savage numbers, profiles at t = 0.63 and 0.75 s,
+dry deposits and the runout law, HB-I/B-I normalised fronts, and the table "the paper says / we
+get" for the numbers of physics.md section 5. A scene that is not finished is listed as such; a
+figure or number that the finished scenes do not allow says so instead of stopping the report.
+"""
+
+import argparse
+import json
+import math
+import os
+import sys
+import traceback
+
+import numpy as np
+
+sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import suite  # noqa: E402  (scene list, dictionary reader)
+from liquid_results import (HOLD_S, L_SLUMP, PAPER_SUBCRITICAL, SECTION_X, T_SLUMP,  # noqa: E402
+                            at, first_time, subcritical_after_arrival)
+from runout_fit import fit_power_law, thickness_front  # noqa: E402
+
+G = 9.81
+D_P = 0.024
+PAPER_NAME = {s: s.replace("+", "&") for s in suite.TABLE1}
+MIXTURES = ["W+P", "HB+P", "B+P"]
+LIQUIDS = ["W", "HB", "B"]
+DRY_SERIES = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V"]
+PAPER = {
+    "subcritical": {"W": 1.2, "HB": 1.1, "B": 1.0, "W+P": 0.6, "HB+P": 0.3, "B+P": 0.5},
+    "alpha": 0.9884,
+    "back_wall": {"HB": (0.811, 0.465), "HB+P": (0.997, 0.894)},
+    "savage_interval_BP": (0.28, 1.1),
+    "liquid_stage_change_s": 2.3,
+    "granular_stage_change_s": 0.95,
+    "outflow_starts_s": {"W": 1.25, "W+P": 1.39},
+}
+assert {k: PAPER["subcritical"][k] for k in LIQUIDS} == PAPER_SUBCRITICAL
+STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),
+         "W+P": ("C0", "--"), "HB+P": ("C1", "--"), "B+P": ("C2", "--"),
+         "HB-I": ("C1", "-"), "B-I": ("C2", "-")}
+
+
+# --------------------------------------------------------------------------------------------
+# Reading the outputs
+
+def read_rows(path):
+    """CSV (lines starting with # skipped) -> list of dicts of floats (text kept if not a number)."""
+    with open(path) as f:
+        lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
+    if not lines:
+        return []
+    keys = lines[0].strip().split(",")
+    rows = []
+    for ln in lines[1:]:
+        vals = ln.strip().split(",")
+        if len(vals) != len(keys):
+            continue  # a row being written
+        row = {}
+        for k, v in zip(keys, vals):
+            try:
+                row[k] = float(v)
+            except ValueError:
+                row[k] = v
+        rows.append(row)
+    return rows
+
+
+def col(rows, key):
+    return np.array([r.get(key, np.nan) for r in rows], dtype=float)
+
+
+class Scene:
+    """One scene's outputs in the work directory (attributes None where absent)."""
+
+    def __init__(self, work, name):
+        self.name, self.paper_name = name, PAPER_NAME.get(name, name)
+        self.dir = os.path.join(work, name)
+        self.done = os.path.isfile(os.path.join(self.dir, ".done"))
+        self.exists = os.path.isdir(self.dir)
+        self.failed = os.path.isfile(os.path.join(self.dir, ".failed"))
+        self.tier = self.content = None
+        self.dem = self.liquid = self.exchange = self.summary = None
+        self.deposit = self.velocity = self.profiles = None
+        self.width = self.H = self.L = None
+        if not self.done:
+            return
+        tier_file = os.path.join(self.dir, "system", "tier")
+        if os.path.isfile(tier_file):
+            rec = suite.read_dict(tier_file)
+            self.tier, self.content = rec.get("tier"), rec.get("content")
+        sp = suite.read_dict(os.path.join(self.dir, "constant", "sceneProperties"))
+        self.content = self.content or sp.get("content")
+        self.L, self.H, self.width = (float(sp["sample"][k]) for k in ("length", "height", "width"))
+        pp = os.path.join(self.dir, "postProcessing")
+        opt = {"dem": "dem/timeSeries.csv", "liquid": "liquid/timeSeries.csv",
+               "exchange": "coupling/exchange.csv", "deposit": "dem/depositProfile.csv",
+               "velocity": "dem/velocityProfile.csv", "profiles": "liquid/profiles.csv"}
+        for attr, rel in opt.items():
+            path = os.path.join(pp, rel)
+            if os.path.isfile(path):
+                setattr(self, attr, read_rows(path))
+        path = os.path.join(pp, "dem", "summary.json")
+        if os.path.isfile(path):
+            with open(path) as f:
+                self.summary = json.load(f)
+            self.tier = self.tier or self.summary.get("tier")
+
+    def t_end(self):
+        for rows in (self.liquid, self.dem):
+            if rows:
+                return rows[-1]["time_s"]
+        return None
+
+
+def vtk_series(case_dir):
+    """[(time, path)] of the particle snapshots (VTK/particles.vtk.series)."""
+    path = os.path.join(case_dir, "VTK", "particles.vtk.series")
+    if not os.path.isfile(path):
+        return []
+    with open(path) as f:
+        files = json.load(f)["files"]
+    return [(float(e["time"]), os.path.join(case_dir, "VTK", e["name"])) for e in files]
+
+
+def vtk_points(path):
+    """Particle centres of a legacy ASCII VTK file written by LIGGGHTS: array (n, 3)."""
+    with open(path) as f:
+        for line in f:
+            if line.startswith("POINTS"):
+                n = int(line.split()[1])
+                break
+        else:
+            return np.zeros((0, 3))
+        vals = []
+        while len(vals) < 3 * n:
+            vals += f.readline().split()
+    return np.array(vals[:3 * n], dtype=float).reshape(n, 3)
+
+
+def granular_surface(points, x_max, d=D_P):
+    """Top of the granular layer per bin of one diameter: max y + d/2 of the bin's grains (nan
+    where a bin holds fewer than 2 grains, so a lone bouncing grain is no surface)."""
+    edges = np.arange(0.0, x_max + d, d)
+    h = np.full(len(edges) - 1, np.nan)
+    idx = np.digitize(points[:, 0], edges) - 1
+    for i in range(len(h)):
+        ys = points[idx == i, 1]
+        if len(ys) >= 2:
+            h[i] = ys.max() + d / 2
+    return 0.5 * (edges[1:] + edges[:-1]), h
+
+
+# --------------------------------------------------------------------------------------------
+# Derived numbers (each returns None where the outputs do not allow it)
+
+def liquid_front(s):
+    return (col(s.liquid, "time_s"), col(s.liquid, "front_bed_m")) if s.liquid else None
+
+
+def granular_front(s):
+    return (col(s.dem, "time_s"), col(s.dem, "front_x_m")) if s.dem else None
+
+
+def subcritical(s):
+    """(t0, t - t0) of the Froude rule of scripts/liquid_results.py, or (t0, None)."""
+    if not s.liquid:
+        return None, None
+    t0, ts = subcritical_after_arrival(s.liquid)
+    return t0, (None if ts is None or t0 is None else ts - t0)
+
+
+def back_wall(s, t):
+    if not s.liquid or s.liquid[-1]["time_s"] < t:
+        return None
+    return at(s.liquid, "back_wall_depth_m", t) / s.H
+
+
+def particle_energies(s):
+    """(t, E_kp, E_pp) per metre of width (J/m): translational + rotational kinetic energy."""
+    if not s.dem:
+        return None
+    t = col(s.dem, "time_s")
+    ek = col(s.dem, "ke_translational_J") + np.nan_to_num(col(s.dem, "ke_rotational_J"))
+    return t, ek / s.width, col(s.dem, "pe_J") / s.width
+
+
+def e_pd(mix, dry):
+    """Eq. 13 with energies per metre of width: (loss_mixture - loss_dry) / loss_dry,
+    loss = E_pp0 - E_pp - E_kp; the dry loss interpolated at the mixture's times."""
+    a, b = particle_energies(mix), particle_energies(dry)
+    if a is None or b is None:
+        return None
+    ta, eka, epa = a
+    tb, ekb, epb = b
+    loss_m = epa[0] - epa - eka
+    loss_d = np.interp(ta, tb, epb[0] - epb - ekb, right=np.nan)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = (loss_m - loss_d) / loss_d
+    ok = (loss_d > 1e-3 * epb[0]) & np.isfinite(r)
+    return ta[ok], r[ok]
+
+
+def e_fc(s):
+    """Eq. 14: (E_pf0 - (E_pf + E_kf)) / E_pf0 of the liquid."""
+    if not s.liquid:
+        return None
+    ep, ek = col(s.liquid, "potential_energy_J"), col(s.liquid, "kinetic_energy_J")
+    return col(s.liquid, "time_s"), (ep[0] - (ep + ek)) / ep[0]
+
+
+def savage(s):
+    """(t, N_sav, column): the paper's form (Eq. 16 as printed, d_p; column savage_paper) where
+    the time series has it, else another N_sav column that is not Iverson's d_p^2/h form."""
+    cols = list(s.dem[0]) if s.dem else []
+    pick = [c for c in ("savage_paper", "savage") if c in cols] or \
+        [c for c in cols if c.startswith("savage") and not c.endswith("_m") and "iverson" not in c]
+    if not pick:
+        return None
+    return col(s.dem, "time_s"), col(s.dem, pick[0]), pick[0]
+
+
+def collision_interval(t, n, threshold=0.1):
+    """First and last time of the longest run with N_sav > threshold."""
+    best, start = None, None
+    for i, v in enumerate(list(n) + [-1]):
+        if v > threshold and start is None:
+            start = i
+        elif not v > threshold and start is not None:
+            if best is None or t[i - 1] - t[start] > best[1] - best[0]:
+                best = (t[start], t[i - 1])
+            start = None
+    return best
+
+
+def stage_change(t, x):
+    """Time the front's speed first falls below half its peak after the peak (speed from
+    0.05 s differences): the end of the fast stage."""
+    if t is None or len(t) < 3:
+        return None
+    grid = np.arange(t[0], t[-1], 0.05)
+    if len(grid) < 3:
+        return None
+    v = np.gradient(np.interp(grid, t, x), grid)
+    k = int(np.argmax(v))
+    slow = np.nonzero(v[k:] < 0.5 * v[k])[0]
+    return float(grid[k + slow[0]]) if len(slow) else None
+
+
+def outflow_start(s):
+    if not s.liquid:
+        return None
+    return first_time(s.liquid, lambda r: r["volume_outlet_m3"] > 1e-3 * r["volume_domain_m3"])
+
+
+def runout_law(scenes):
+    """Fit of (l_inf - L)/L = lambda a^alpha over the finished P-I-* scenes (both front rules)."""
+    rows = []
+    for name in DRY_SERIES:
+        s = scenes[name]
+        if not s.done or not s.summary:
+            continue
+        L = s.summary["sample"]["length_m"]
+        a = s.summary["settled"]["height_m"] / L
+        thick = thickness_front(os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv"), L, D_P)
+        rows.append({"scene": name, "a": a, "runout": s.summary["runout_m"] / L, "thick": (thick - L) / L,
+                     "stop_reason": s.summary.get("stop_reason"), "end_time_s": s.summary.get("end_time_s")})
+    if len(rows) < 2:
+        return {"rows": rows}
+    alpha, lam = fit_power_law([r["a"] for r in rows], [r["runout"] for r in rows])
+    alpha_t, lam_t = fit_power_law([r["a"] for r in rows], [r["thick"] for r in rows])
+    return {"rows": rows, "alpha": alpha, "lambda": lam, "alpha_thickness": alpha_t, "lambda_thickness": lam_t}
+
+
+# --------------------------------------------------------------------------------------------
+# Figures
+
+class Figures:
+    """Each figure is made by one function; what cannot be drawn is recorded, not raised."""
+
+    def __init__(self, out):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        self.plt, self.out = plt, out
+        self.made, self.skipped = [], []
+
+    def make(self, name, title, fn):
+        try:
+            fig = fn()
+        except Exception as e:  # noqa: BLE001  a report never stops on one figure
+            self.skipped.append((name, f"error: {e}"))
+            traceback.print_exc()
+            return
+        if isinstance(fig, str) or fig is None:
+            self.skipped.append((name, fig or "no data"))
+            return
+        fig.tight_layout()
+        fig.savefig(os.path.join(self.out, name), dpi=110)
+        self.plt.close(fig)
+        self.made.append((name, title))
+
+    def axes(self, n=1, w=6.4, h=4.2):
+        fig, ax = self.plt.subplots(1, n, figsize=(w * n if n > 1 else w, h), squeeze=False)
+        return fig, ax[0]
+
+
+def label(s):
+    return f"{s.paper_name} ({s.tier})"
+
+
+def draw(ax, items, labels, hline=None):
+    """One line per (scene, t, y) of ITEMS on AX; LABELS = (xlabel, ylabel, title)."""
+    for s, t, y in items:
+        c, ls = STYLE.get(s.name, (None, "-"))
+        ax.plot(t, y, ls, color=c, label=label(s))
+    if hline is not None:
+        ax.axhline(hline, color="grey", lw=0.6)
+    ax.set(xlabel=labels[0], ylabel=labels[1], title=labels[2])
+    legend(ax)
+
+
+def plot_curves(F, items, xlabel, ylabel, title, hline=None, ylim=None):
+    """items: [(scene, t, y)]; one line each. None when there are none."""
+    if not items:
+        return None
+    fig, (ax,) = F.axes()
+    draw(ax, items, (xlabel, ylabel, title), hline)
+    if ylim:
+        ax.set_ylim(*ylim)
+    return fig
+
+
+def plot_pair(F, left, right, left_axes, right_axes, hline=None):
+    """Two panels side by side; LEFT/RIGHT: [(scene, t, y)]; *_AXES: (xlabel, ylabel, title).
+    None when both are empty."""
+    if not left and not right:
+        return None
+    fig, axs = F.axes(2)
+    draw(axs[0], left, left_axes, hline)
+    draw(axs[1], right, right_axes, hline)
+    return fig
+
+
+def fig_profiles(F, scenes, times):
+    """Liquid surface h(x) (profiles.csv, nearest write time) and granular surface (nearest
+    particle snapshot) at each of TIMES, normalised by H."""
+    fig, axs = F.axes(len(times))
+    drawn = 0
+    for ax, t in zip(axs, times):
+        for s in scenes.values():
+            if not s.done:
+                continue
+            c, ls = STYLE.get(s.name, (None, "-"))
+            if s.profiles and s.name not in ("HB-I", "B-I"):
+                tw = sorted({r["time_s"] for r in s.profiles}, key=lambda v: abs(v - t))[0]
+                if abs(tw - t) <= 0.06:
+                    rows = [r for r in s.profiles if r["time_s"] == tw]
+                    ax.plot(col(rows, "x_m"), col(rows, "depth_m") / s.H, ls, color=c,
+                            label=f"{s.paper_name} liquid, t = {tw:.2f} s")
+                    drawn += 1
+            if s.content in ("particles", "mixture") and s.name in ("P",) + tuple(MIXTURES):
+                snaps = vtk_series(s.dir)
+                if snaps:
+                    tw, path = min(snaps, key=lambda e: abs(e[0] - t))
+                    if abs(tw - t) <= 0.06:
+                        x, h = granular_surface(vtk_points(path), 4.0)
+                        ax.plot(x, h / s.H, ":" if s.content == "mixture" else "-", color=c, lw=1.2,
+                                label=f"{s.paper_name} grains, t = {tw:.2f} s")
+                        drawn += 1
+        ax.set(xlabel="x (m)", ylabel="h / H", title=f"surfaces near t = {t} s", xlim=(0, 4))
+        legend(ax)
+    return fig if drawn else "no profile written within 0.06 s of these times"
+
+
+def make_figures(F, sc, fin, law):
+    liq = [sc[n] for n in LIQUIDS + MIXTURES if sc[n].done and sc[n].liquid]
+    gran = [sc[n] for n in ["P"] + MIXTURES if sc[n].done and sc[n].dem]
+    mix = [sc[n] for n in MIXTURES if sc[n].done]
+    F.make("fronts_liquid.png", "Liquid fronts (bed row, alpha >= 0.5)", lambda: plot_curves(
+        F, [(s, *liquid_front(s)) for s in liq], "t (s)", "liquid front x_f (m)", "Liquid fronts"))
+    F.make("fronts_granular.png", "Granular fronts (largest connected cluster)", lambda: plot_curves(
+        F, [(s, *granular_front(s)) for s in gran], "t (s)", "granular front (m)", "Granular fronts"))
+
+    def relvel():
+        pairs = [(s, te, {c: np.interp(te, col(s.liquid, "time_s"), col(s.liquid, f"mean_u{c}_m_s"))
+                          - col(s.exchange, f"meanV{c}") for c in "xy"})
+                 for s in mix if s.liquid and s.exchange for te in [col(s.exchange, "time")]]
+        return plot_pair(F, [(s, t, dv["x"]) for s, t, dv in pairs], [(s, t, dv["y"]) for s, t, dv in pairs],
+                         ("t (s)", "mean u_x liquid - mean v_x particles (m/s)", "relative velocity, x"),
+                         ("t (s)", "mean u_y liquid - mean v_y particles (m/s)", "relative velocity, y"),
+                         hline=0) or "needs a finished mixture scene (liquid time series and coupling/exchange.csv)"
+    F.make("relative_velocity.png", "Mean liquid minus mean particle velocity (mixtures)", relvel)
+
+    F.make("kinetic_energies.png", "Kinetic energies of particles and liquid (per metre of width)",
+           lambda: plot_pair(
+               F, [(s, *particle_energies(s)[:2]) for s in gran],
+               [(s, col(s.liquid, "time_s"), col(s.liquid, "kinetic_energy_J") / s.width) for s in liq],
+               ("t (s)", "E_kp per metre of width (J/m)", "particles"),
+               ("t (s)", "E_kf per metre of width (J/m)", "liquid")))
+
+    def epd_efc():
+        left = []
+        if sc["P"].done:
+            left = [(s, *r) for s in mix for r in [e_pd(s, sc["P"])] if r is not None and len(r[0])]
+        return plot_pair(F, left, [(s, *e_fc(s)) for s in liq],
+                         ("t (s)", "E_pd (Eq. 13)", "particle energy dissipation vs dry P"),
+                         ("t (s)", "E_fc (Eq. 14)", "liquid energy consumed"))
+    F.make("epd_efc.png", "E_pd (Eq. 13, mixtures against dry P) and E_fc (Eq. 14)", epd_efc)
+
+    F.make("interaction_forces.png", "Total fluid-particle force on the liquid (x, y)", lambda: plot_pair(
+        F, [(s, col(s.exchange, "time"), col(s.exchange, "Ff_x")) for s in mix if s.exchange],
+        [(s, col(s.exchange, "time"), col(s.exchange, "Ff_y")) for s in mix if s.exchange],
+        ("t (s)", "force on the liquid, x (N)", "x"), ("t (s)", "force on the liquid, y (N)", "y"))
+        or "needs a finished mixture scene (coupling/exchange.csv)")
+
+    def froude():
+        items = []
+        for s in liq:
+            t0, _ = subcritical(s)
+            if t0 is not None:
+                t = col(s.liquid, "time_s")
+                m = t >= t0
+                items.append((s, t[m] - t0, col(s.liquid, "section_froude")[m]))
+        return plot_curves(F, items, "t - t0 (s)", f"Fr at x = {SECTION_X} m", "Froude number", 1, (0, 5)) \
+            or f"no liquid front reached x = {SECTION_X} m"
+    F.make("froude.png", f"Froude number at x = {SECTION_X} m vs time after the front's arrival", froude)
+
+    def sav():
+        items = [(s, *savage(s)[:2]) for s in gran if savage(s)]
+        if not items:
+            return "no time series with a Savage-number column (mixture scenes write one)"
+        fig = plot_curves(F, items, "t (s)", "N_sav (Eq. 16, d_p form)", "Savage number at x = 0.8 m", 0.1)
+        fig.axes[0].set_yscale("log")
+        return fig
+    F.make("savage.png", "Savage number of the particles (0.1: friction/collision limit)", sav)
+    F.make("profiles.png", "Liquid and granular surfaces near t = 0.63 s and 0.75 s",
+           lambda: fig_profiles(F, sc, (0.63, 0.75)))
+
+    def deposits():
+        dry = [sc[n] for n in DRY_SERIES + ["P"] if sc[n].done and sc[n].deposit]
+        if not dry:
+            return "no finished dry scene"
+        fig, axs = F.axes(2)
+        for s in dry:
+            axs[0].plot(col(s.deposit, "x_m"), col(s.deposit, "h_top_m") / s.H, label=label(s))
+        axs[0].set(xlabel="x (m)", ylabel="h / H (top of the deposit)", title="dry deposits")
+        legend(axs[0])
+        if law.get("alpha") is not None:
+            a = np.array([r["a"] for r in law["rows"]])
+            grid = np.linspace(a.min() * 0.95, a.max() * 1.05, 50)
+            axs[1].loglog(a, [r["runout"] for r in law["rows"]], "o", label="cluster front")
+            axs[1].loglog(grid, law["lambda"] * grid ** law["alpha"], "-",
+                          label=f"fit λ = {law['lambda']:.3f}, α = {law['alpha']:.3f}")
+            axs[1].loglog(a, [r["thick"] for r in law["rows"]], "s", label="one-grain-thick front")
+            axs[1].loglog(grid, law["lambda_thickness"] * grid ** law["alpha_thickness"], "-",
+                          label=f"fit λ = {law['lambda_thickness']:.3f}, α = {law['alpha_thickness']:.3f}")
+            axs[1].loglog(grid, 1.2 * grid, "--", color="grey",
+                          label="Lube et al. 2005: 1.2 a")
+            axs[1].set(xlabel="a = H/L (settled)", ylabel="(l∞ − L)/L", title="runout law (Eq. 12)")
+            legend(axs[1])
+        else:
+            axs[1].text(0.5, 0.5, "runout law: fewer than two P-I scenes finished", ha="center")
+            axs[1].set_axis_off()
+        return fig
+    F.make("deposits_runout.png", "Dry deposits and the runout law (P-I-I ... P-I-V)", deposits)
+
+    def slumps():
+        items = []
+        for n in ("HB-I", "B-I"):
+            s = sc[n]
+            if s.done and s.liquid:
+                t = col(s.liquid, "time_s")
+                m = t > 0
+                items.append((s, t[m] / T_SLUMP[n], col(s.liquid, "front_bed_m")[m] / L_SLUMP[n]))
+        fig = plot_curves(F, items, "t / T", "X_f / L", "HB-I and B-I normalised fronts")
+        if fig:
+            fig.axes[0].set_xscale("log")
+        return fig
+    F.make("slumps_normalised.png", "HB-I and B-I fronts X_f/L against t/T", slumps)
+
+    def velprof():
+        items = [sc[n] for n in ("P-I-II", "P") if sc[n].done and sc[n].velocity]
+        if not items:
+            return "no finished P-I-II or P"
+        fig, (ax,) = F.axes()
+        for s in items:
+            ax.plot(col(s.velocity, "u_x_m_s"), col(s.velocity, "y_m"), "o-", ms=3, label=label(s))
+        ax.set(xlabel="u_x (m/s)", ylabel="y (m)", title="u(y) at x = 0.8 m, t = 0.5 s")
+        legend(ax)
+        return fig
+    F.make("velocity_profile.png", "Velocity profile u(y) at x = 0.8 m, t = 0.5 s", velprof)
+
+
+# --------------------------------------------------------------------------------------------
+# The table "the paper says / we get"
+
+FIDELITY = {  # (tier, content) -> what the tier changes that may explain a difference
+    ("quick", "particles"): "quick tier: grains softened 1e4x in a 3 d periodic slice (no side walls), run cut at 1.5 s",
+    ("quick", "liquid"): "quick tier: 2-D (no side-wall friction) on H/12 cells, run cut at 1.5 s",
+    ("quick", "mixture"): "quick tier: 3 d periodic slice, 2-D fluid on 0.075 m cells, grains softened 1e4x, "
+                          "run cut at 1.5 s",
+    ("reference", "particles"): "reference tier: grains softened 1000x",
+    ("reference", "liquid"): "reference tier: 2-D, no side-wall friction",
+    ("reference", "mixture"): "reference tier: 0.12 m periodic slice, 2-D fluid, grains softened 1000x",
+}
+
+
+def fidelity(*scenes):
+    """What the tiers of SCENES change against the paper (empty for the paper tier)."""
+    return "; ".join(sorted({FIDELITY.get((s.tier, s.content), "") for s in scenes if s.done} - {""}))
+
+
+def tiers_of(*scenes):
+    return ",".join(sorted({s.tier or "?" for s in scenes if s.done})) or "-"
+
+
+def row(quantity, paper, ours, tier, agree, note):
+    return {"quantity": quantity, "paper": paper, "ours": ours, "tier": tier,
+            "agrees": None if agree is None else bool(agree), "note": note}
+
+
+def fmt(v, nd=3):
+    """Our numbers: NA as '-', floats to ND significant digits."""
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:.{nd}g}"
+    return str(v)
+
+
+def legend(ax):
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+
+
+def table(sc, law):
+    rows = []
+    for n in LIQUIDS + MIXTURES:
+        s, paper = sc[n], PAPER["subcritical"][n]
+        q = f"{s.paper_name}: Fr < 1 at x = {SECTION_X} m, t − t0 (s)"
+        if not s.done:
+            rows.append(row(q, paper, None, "-", None, "scene not finished"))
+            continue
+        t0, dt = subcritical(s)
+        if t0 is None:
+            note = f"the liquid front never reached x = {SECTION_X} m before the run ended"
+            rows.append(row(q, paper, None, s.tier, False, note))
+        elif dt is None:
+            note = (f"still supercritical when the run ended at {s.t_end():.2f} s (t0 = {t0:.2f} s); "
+                    + fidelity(s))
+            rows.append(row(q, paper, None, s.tier, False, note))
+        else:
+            agree = abs(dt - paper) <= max(0.1, 0.15 * paper)
+            if agree:
+                note = f"agrees within {max(0.1, 0.15 * paper):.2f} s (t0 = {t0:.2f} s; rule: Fr < 1 held {HOLD_S} s)"
+            elif dt > paper:
+                note = (f"later than the paper: {fidelity(s)}; a flow without side-wall "
+                        "friction (2-D or periodic) decelerates less" if s.tier != "paper" else
+                        "later than the paper: check the section depth rule (minDepth) and the mesh")
+            else:
+                note = ("earlier than the paper: " + fidelity(s) +
+                        ("; coarse cells smear the thinning tail at the section" if s.tier == "quick" else ""))
+            rows.append(row(q, paper, round(dt, 2), s.tier, agree, note))
+
+    # Front orders.
+    def order(names, fronts, t):
+        have = [n for n in names if sc[n].done and fronts(sc[n]) is not None]
+        if len(have) < len(names):
+            return None, f"needs {', '.join(PAPER_NAME[n] for n in names if n not in have)} finished"
+        tmax = min(fronts(sc[n])[0][-1] for n in names)
+        tt = min(t, tmax)
+        xs = {n: float(np.interp(tt, *fronts(sc[n]))) for n in names}
+        got = " > ".join(PAPER_NAME[n] for n in sorted(names, key=lambda n: -xs[n]))
+        return got, f"at t = {tt:.2f} s: " + ", ".join(f"{PAPER_NAME[n]} {xs[n]:.2f} m" for n in names)
+    got, where = order(LIQUIDS, liquid_front, 2.0)
+    rows.append(row("front order, pure liquids", "W > HB > B", got, tiers_of(*(sc[n] for n in LIQUIDS)),
+                    None if got is None else got == "W > HB > B",
+                    where if got is None else f"liquid fronts {where}"))
+
+    def mixed_front(s):
+        return liquid_front(s) if s.content in ("liquid", "mixture") else granular_front(s)
+    got, where = order(["HB", "HB+P", "P"], mixed_front, 1.0)
+    rows.append(row("front order HB, HB&P, P", "HB > HB&P > P", got, tiers_of(sc["HB"], sc["HB+P"], sc["P"]),
+                    None if got is None else got == "HB > HB&P > P",
+                    where if got is None else f"liquid fronts (HB, HB&P) and granular front (P) {where}"))
+
+    # Runout law.
+    tier = tiers_of(*(sc[n] for n in DRY_SERIES))
+    if law.get("alpha") is None:
+        rows.append(row("runout exponent α (P-I-I … P-I-V)", PAPER["alpha"], None, tier, None,
+                        f"needs at least two of P-I-I … P-I-V finished ({len(law['rows'])} now)"))
+        rows.append(row("runout coefficient λ", "not given (Lube et al. 2005: 1.2)", None, tier, None, "as above"))
+    else:
+        a, lam = law["alpha"], law["lambda"]
+        agree = abs(a - PAPER["alpha"]) <= 0.1
+        stopped = {r["stop_reason"] for r in law["rows"]}
+        note = (f"agrees within 0.1 (cluster front; one-grain-thick front: α = {law['alpha_thickness']:.3f})"
+                if agree else
+                f"cluster front; one-grain-thick front gives α = {law['alpha_thickness']:.3f}. "
+                + ("Runs cut at endTime before arrest, so runouts are not final; " if "endTime" in stopped else "")
+                + fidelity(*(sc[n] for n in DRY_SERIES)))
+        rows.append(row(f"runout exponent α ({len(law['rows'])} of P-I-I … P-I-V)", PAPER["alpha"],
+                        round(a, 3), tier, agree, note))
+        rows.append(row("runout coefficient λ", "not given (Lube et al. 2005: 1.2)", round(lam, 3), tier, None,
+                        f"one-grain-thick front: λ = {law['lambda_thickness']:.3f}; the paper gives no λ"))
+
+    # Back wall.
+    for n in ("HB", "HB+P"):
+        s = sc[n]
+        for t, paper in zip((0.5, 1.0), PAPER["back_wall"][n]):
+            q = f"{s.paper_name}: max height at the back wall / H, t = {t} s"
+            if not s.done:
+                rows.append(row(q, paper, None, "-", None, "scene not finished"))
+                continue
+            v = back_wall(s, t)
+            if v is None:
+                rows.append(row(q, paper, None, s.tier, False, f"the run ended at {s.t_end():.2f} s"))
+                continue
+            agree = abs(v - paper) <= 0.05
+            note = ("agrees within 0.05 (liquid depth of the first cell column)" if agree else
+                    "liquid depth of the first cell column; " + fidelity(s) +
+                    ("; without side walls the column drains faster" if v < paper else
+                     "; the regularised liquid (cap 1e4 Pa s) and coarse cells hold more at the wall"))
+            rows.append(row(q, paper, round(v, 3), s.tier, agree, note))
+
+    # Savage interval of B&P and the ordering.
+    s = sc["B+P"]
+    q = "B&P collision-dominated (N_sav > 0.1), s"
+    sv = savage(s) if s.done else None
+    if not s.done:
+        rows.append(row(q, "0.28 – 1.1", None, "-", None, "scene not finished"))
+    elif sv is None:
+        rows.append(row(q, "0.28 – 1.1", None, s.tier, None, "no Savage column in the time series"))
+    else:
+        iv = collision_interval(sv[0], sv[1])
+        ours = None if iv is None else f"{iv[0]:.2f} – {iv[1]:.2f}"
+        agree = iv is not None and abs(iv[0] - 0.28) <= 0.1 and abs(iv[1] - 1.1) <= 0.15
+        rows.append(row(q, "0.28 – 1.1", ours, s.tier, agree,
+                        f"column {sv[2]}" + ("" if agree else "; " + fidelity(s)
+                                             + ("; never above 0.1" if iv is None else ""))))
+    names = ["B+P", "P", "HB+P", "W+P"]
+    have = [n for n in names if sc[n].done and savage(sc[n])]
+    if len(have) == len(names):
+        means = {}
+        for n in names:
+            t, v, _ = savage(sc[n])
+            m = (t >= 0.2) & (t <= 1.2) & np.isfinite(v)
+            means[n] = float(np.mean(v[m])) if m.any() else float("nan")
+        got = " > ".join(PAPER_NAME[n] for n in sorted(names, key=lambda n: -means[n]))
+        rows.append(row("Savage ordering (mean over 0.2-1.2 s)", "B&P > P ≈ HB&P > W&P", got,
+                        tiers_of(*(sc[n] for n in names)), None,
+                        ", ".join(f"{PAPER_NAME[n]} {means[n]:.3g}" for n in names) +
+                        " (the paper's P ≈ HB&P allows either order of those two)"))
+    else:
+        lack = [PAPER_NAME[n] for n in names if n not in have]
+        rows.append(row("Savage ordering", "B&P > P ≈ HB&P > W&P", None, "-", None,
+                        f"needs the Savage column of {', '.join(lack)} (not finished or none written)"))
+
+    # Stage changes (mixtures: the paper's Fig. of the W&P/HB&P/B&P fronts).
+    for kind, fronts, paper in (("liquid", liquid_front, PAPER["liquid_stage_change_s"]),
+                                ("granular", granular_front, PAPER["granular_stage_change_s"])):
+        got = {}
+        for n in MIXTURES:
+            if sc[n].done and fronts(sc[n]) is not None:
+                got[n] = stage_change(*fronts(sc[n]))
+        q = f"{kind}-front stage change, mixtures (s)"
+        if not got:
+            rows.append(row(q, paper, None, "-", None, "needs a finished mixture scene"))
+            continue
+        ours = ", ".join(f"{PAPER_NAME[n]} {fmt(v)}" for n, v in got.items())
+        vals = [v for v in got.values() if v is not None]
+        agree = bool(vals) and all(abs(v - paper) <= 0.2 * paper for v in vals)
+        tier = tiers_of(*(sc[n] for n in got))
+        note = "rule: the front speed (0.05 s differences) first falls below half its peak"
+        if not agree:
+            ended = max(sc[n].t_end() or 0 for n in got)
+            note += (f"; the runs ended at {ended:.2f} s, before the paper's change" if ended < paper
+                     else "; " + fidelity(*(sc[n] for n in got)))
+        rows.append(row(q, paper, ours, tier, agree, note))
+
+    # Outflow start (physics.md section 1: the channel-length calibration).
+    for n in ("W", "W+P"):
+        s, paper = sc[n], PAPER["outflow_starts_s"][n]
+        q = f"{s.paper_name}: liquid starts leaving the channel (s)"
+        if not s.done:
+            rows.append(row(q, paper, None, "-", None, "scene not finished"))
+            continue
+        v = outflow_start(s)
+        agree = v is not None and abs(v - paper) <= 0.1
+        rows.append(row(q, paper, None if v is None else round(v, 2), s.tier, agree if v is not None else False,
+                        "outflow > 0.1 % of the liquid; the channel length 5.86 m was calibrated on 2-D W "
+                        "(results/pure_liquids)" + ("" if agree else
+                                                    f"; no outflow before {s.t_end():.2f} s" if v is None
+                                                    else "; " + fidelity(s))))
+    return rows
+
+
+# --------------------------------------------------------------------------------------------
+
+def write_report(out, work, sc, F, rows, law, command):
+    fin = [n for n in suite.TABLE1 if sc[n].done]
+    lines = ["# Li & Zhao (2018) scenes: the paper says / we get", "",
+             f"Made by `{command}` from `{work}` (scripts/suite.py runs, docs/suite.md). "
+             f"{len(fin)} of {len(suite.TABLE1)} scenes finished.", "",
+             "| scene | status | tier | content | simulated to (s) |", "|---|---|---|---|---|"]
+    for n in suite.TABLE1:
+        s = sc[n]
+        status = "finished" if s.done else ("failed (log.suite)" if s.failed else
+                                            "started, not finished" if s.exists else "not run")
+        lines.append(f"| {s.paper_name} | {status} | {s.tier or '-'} | {s.content or '-'} | "
+                     f"{fmt(s.t_end()) if s.done else '-'} |")
+    tiers = sorted({sc[n].tier for n in fin if sc[n].tier})
+    if tiers:
+        lines += ["", "Tiers used (cases/tiers/<tier>):"]
+        for t in tiers:
+            try:
+                lines.append(f"- **{t}**: {suite.Tier(t).description}")
+            except suite.DictError:
+                lines.append(f"- **{t}**")
+    lines += ["", "## The paper says / we get", "",
+              "| quantity | paper | ours | tier | agrees | note |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        ag = {True: "yes", False: "no", None: "-"}[r["agrees"]]
+        lines.append(f"| {r['quantity']} | {r['paper']} | {fmt(r['ours'])} | {r['tier']} | {ag} | {r['note']} |")
+    lines += ["", "Definitions: liquid front = largest x where the bed cell row holds α ≥ 0.5; "
+              "granular front = largest x of the largest connected cluster (gap ≤ 0.5 d); "
+              f"t0 = arrival of the liquid front at x = {SECTION_X} m, subcritical = Fr < 1 held for {HOLD_S} s; "
+              "energies per metre of width (scenes of different widths compare); E_pd = "
+              "([E_pp0 − E_pp − E_kp]_mixture − [same]_dry)/[same]_dry with E_kp translational + "
+              "rotational; E_fc = (E_pf0 − (E_pf + E_kf))/E_pf0.", "", "## Figures", ""]
+    for name, title in F.made:
+        lines += [f"### {title}", "", f"![{title}]({name})", ""]
+    if F.skipped:
+        lines += ["Not drawn:", ""] + [f"- `{n}`: {why}" for n, why in F.skipped] + [""]
+    if law.get("rows"):
+        lines += ["## Dry runouts", "", "| scene | a (settled) | (l∞ − L)/L cluster | one-grain-thick | stop |",
+                  "|---|---|---|---|---|"]
+        for r in law["rows"]:
+            lines.append(f"| {r['scene']} | {r['a']:.3f} | {r['runout']:.3f} | {r['thick']:.3f} | "
+                         f"{r['stop_reason']} at {r['end_time_s']:.2f} s |")
+        lines.append("")
+    with open(os.path.join(out, "report.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def clean(o):
+    """JSON-safe copy: NaN/inf -> None, numpy numbers -> Python ones."""
+    if isinstance(o, dict):
+        return {str(k): clean(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [clean(v) for v in o]
+    if isinstance(o, (np.floating, float)):
+        return None if not math.isfinite(float(o)) else float(o)
+    if isinstance(o, np.integer):
+        return int(o)
+    if isinstance(o, np.bool_):
+        return bool(o)
+    return o
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--work", default="runs/reference", help="suite.py's work directory")
+    ap.add_argument("--out", default="results/li_zhao_2018")
+    args = ap.parse_args(argv)
+    work, out = (p if os.path.isabs(p) else os.path.join(suite.ROOT, p) for p in (args.work, args.out))
+    os.makedirs(out, exist_ok=True)
+    sc = {}
+    for n in suite.TABLE1:
+        try:
+            sc[n] = Scene(work, n)
+        except Exception as e:  # noqa: BLE001  an unreadable scene is reported, not fatal
+            print(f"report.py: {n}: cannot read its outputs: {e}", file=sys.stderr)
+            sc[n] = Scene("/nonexistent", n)
+    fin = [n for n in suite.TABLE1 if sc[n].done]
+    law = runout_law(sc)
+    F = Figures(out)
+    make_figures(F, sc, fin, law)
+    rows = table(sc, law)
+    command = f"python3 scripts/report.py --work {args.work} --out {args.out}"
+    write_report(out, work, sc, F, rows, law, command)
+    summary = {"command": command, "work": work,
+               "scenes": {n: {"status": "finished" if sc[n].done else ("unfinished" if sc[n].exists else "not run"),
+                              "tier": sc[n].tier, "content": sc[n].content,
+                              "simulated_to_s": sc[n].t_end() if sc[n].done else None} for n in suite.TABLE1},
+               "paper_vs_ours": rows,
+               "runout_law": {k: v for k, v in law.items()},
+               "subcritical_after_arrival_s": {n: subcritical(sc[n])[1] for n in LIQUIDS + MIXTURES if sc[n].done},
+               "figures": [n for n, _ in F.made], "figures_not_drawn": dict(F.skipped)}
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(clean(summary), f, indent=2)
+        f.write("\n")
+    print(f"report: {len(fin)} of {len(suite.TABLE1)} scenes finished; {len(F.made)} figures; "
+          f"{sum(1 for r in rows if r['agrees'])} of {sum(1 for r in rows if r['agrees'] is not None)} "
+          f"compared numbers agree; {os.path.join(out, 'report.md')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,150 @@
+"""Mixture scene end to end (issue 4 cases; issue 5 test 5): a copy of cases/W+P-quick, shortened,
+run through its Allrun (mixflowDem -settleOnly, mixflowPrepare, blockMesh, mixflowCoupled), then
+checked against conservation laws, and then mixflowExtract on it, checked with h5py.
+
+Asserts (tolerances and why):
+  - every exchange: action = reaction to 1e-10 of sum |F_i| (the source is assembled from the same
+    forces; round-off only), fluid-seen particle volume = particle volume - outside - clipped to
+    1e-9 (exact volume split);
+  - liquid volume balance (V0 - V_domain - V_outlet - V_top) / V0 within 1e-6 every step (issue 3);
+  - particles: remaining + deleted at outlet + deleted at top + lost = settled count, exactly;
+  - the settled sample is saturated: initial liquid volume = pore volume of the box
+    [0, L] x [0, settled height] x [0, W] within the particle volume of the cell row the top cuts;
+  - mixflowExtract: mixture.h5 opens with h5py; /fields/alpha_s etc. have shape
+    (windows, y bins, x bins) and units; the particle volume in the bins (alpha_s x bin volume,
+    summed) equals the particles' volume N Vp at the window's snapshots to 1e-9 (exact split, the
+    snapshot mean of a count that does not change while nothing leaves; the grid starts one radius
+    behind the back wall and below the floor, because the grains there overlap the walls by their
+    contact deflection: 6e-7 and 1.4e-7 of the volume).
+"""
+
+import argparse
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.dont_write_bytecode = True
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "cfd"))
+import foamcase as fc  # noqa: E402
+
+
+def rows(path):
+    with open(path) as f:
+        lines = [ln for ln in f if not ln.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--root", required=True, help="repository (cases/, scripts/)")
+    ap.add_argument("--bindir", required=True, help="directory of the mixflow programs")
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--end", type=float, default=0.3)
+    a = ap.parse_args()
+
+    case = os.path.join(a.workdir, "W+P-quick")
+    shutil.rmtree(a.workdir, ignore_errors=True)
+    os.makedirs(a.workdir)
+    shutil.copytree(os.path.join(a.root, "cases", "W+P-quick"), case,
+                    ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*",
+                                                  "processor*", "[0-9]*"))
+    fc.set_entry(os.path.join(case, "system/controlDict"), "endTime", repr(a.end))
+    env = dict(os.environ, MIXFLOW_ROOT=a.root, PATH=a.bindir + os.pathsep + os.environ["PATH"])
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    r = subprocess.run(["bash", os.path.join(case, "Allrun"), str(a.np)], env=env, cwd=case,
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        fc.fail(f"Allrun failed ({r.returncode}):\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
+
+    pp = os.path.join(case, "postProcessing")
+    ex = rows(os.path.join(pp, "coupling", "exchange.csv"))
+    worst_ar = max(float(x["actionReaction"]) for x in ex)
+    worst_vol = max(abs(float(x["volumeError"])) for x in ex)
+    print(f"{len(ex)} exchanges: worst action-reaction {worst_ar:.3e} (limit 1e-10), "
+          f"worst volume error {worst_vol:.3e} (limit 1e-9)")
+    ok = worst_ar <= 1e-10 and worst_vol <= 1e-9
+
+    liq = rows(os.path.join(pp, "liquid", "timeSeries.csv"))
+    worst_liq = max(abs(float(x["volume_balance"])) for x in liq)
+    print(f"liquid volume balance: worst {worst_liq:.3e} over {len(liq)} steps (limit 1e-6)")
+    ok &= worst_liq <= 1e-6
+
+    dem = rows(os.path.join(pp, "dem", "timeSeries.csv"))
+    state = open(os.path.join(case, "dem", "settled.state")).read()
+    n0 = int(state.split("particles")[1].split(";")[0])
+    last = dem[-1]
+    total = (int(last["particles"]) + int(last["deleted_outlet"]) + int(last["deleted_top"]) +
+             int(last["lost"]))
+    print(f"particles: settled {n0}, at t = {float(last['time_s']):.3f} s remaining "
+          f"{last['particles']} + outlet {last['deleted_outlet']} + top {last['deleted_top']} + "
+          f"lost {last['lost']} = {total}")
+    ok &= total == n0 and float(last["time_s"]) >= a.end - 1e-3
+
+    # Saturation: V_liquid(0) against the pore volume of the settled box.
+    height = float(state.split("height")[1].split(";")[0])
+    scene = open(os.path.join(case, "constant", "sceneProperties")).read()
+
+    def sample(key):
+        block = re.search(r"^sample\b[^{]*\{([^}]*)\}", scene, re.M).group(1)
+        return float(re.search(rf"\b{key}\s+([^;]+);", block).group(1))
+    L, W = sample("length"), sample("width")
+    vp = math.pi / 6 * 0.024**3
+    pore = L * height * W - n0 * vp
+    v0 = float(liq[0]["volume_domain_m3"])
+    # The cell row the settled top cuts is part liquid (alpha) and part particles (eps_f of the
+    # whole cell): the liquid there is off by at most the particle volume the row could hold,
+    # phi L W dy (dy the cell height); a wrong fill (no liquid, or liquid in the particles) is not.
+    dy = 0.6 / round(0.6 / 0.06)
+    bound = 0.6056 * L * W * dy
+    print(f"initial liquid {v0:.6e} m3 vs pore volume of the settled box {pore:.6e} m3 "
+          f"({(v0 / pore - 1) * 100:+.2f} %; bound from the cut cell row "
+          f"{bound / pore * 100:.1f} %)")
+    ok &= abs(v0 - pore) <= bound
+
+    # mixflowExtract on the coupled case (issue 5 test 5).
+    with open(os.path.join(case, "system", "extractDict"), "w") as f:
+        f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
+                "grid { x (-0.012 1.188 20); y (-0.012 0.348 6); }\n"
+                f"windows {{ start 0; end {a.end!r}; width 0.1; }}\n"
+                "fluid { source openfoam; }\n"
+                "liquidDensity 1000;\n")
+    r = subprocess.run([os.path.join(a.bindir, "mixflowExtract"), "-case", case],
+                       capture_output=True, text=True, env=env)
+    print(r.stdout[-1500:])
+    if r.returncode != 0:
+        fc.fail(f"mixflowExtract failed ({r.returncode}):\n{r.stderr[-3000:]}")
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(pp, "mixture", "mixture.h5"), "r") as h:
+        nw = h["windows/t0"].shape[0]
+        nx, ny = h["grid/x_edges"].shape[0] - 1, h["grid/y_edges"].shape[0] - 1
+        print(f"mixture.h5: {nw} windows, {ny} x {nx} bins")
+        ok &= nw == round(a.end / 0.1) and (nx, ny) == (20, 6)
+        expect_units = {"alpha_s": "1", "u_s": "m/s", "u_f": "m/s", "p_f": "Pa", "p_s": "Pa",
+                        "lambda_u": "1"}
+        for name, unit in expect_units.items():
+            d = h["fields/" + name]
+            got = d.attrs.get("units")
+            got = got.decode() if isinstance(got, bytes) else got
+            print(f"  {name}: shape {d.shape}, units {got!r}")
+            ok &= d.shape == (nw, ny, nx) and got == unit
+        a_s = h["fields/alpha_s"][0]
+        vol = float(np.nansum(a_s) * (1.2 / 20) * (0.36 / 6) * W)
+        nwin = int(dem[0]["particles"])
+        err = abs(vol / (nwin * vp) - 1)
+        print(f"  window 0: particle volume in bins {vol:.6e} m3 vs N Vp {nwin * vp:.6e} m3 "
+              f"(relative {err:.2e}, limit 1e-9)")
+        ok &= err <= 1e-9
+    if not ok:
+        fc.fail("mixture case checks failed (see above)")
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
