@@ -14,7 +14,8 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   const Dictionary& d = p.dict;
   std::vector<std::string> allowed = {"FoamFile",           "demScript",         "exchangeEvery",
                                       "forceModels",        "voidFractionModel", "interpolation",
-                                      "sourceDistribution", "voidfractionMin",   "logEvery"};
+                                      "sourceDistribution", "voidfractionMin",   "logEvery",
+                                      "dragRelaxationLimit"};
   for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
   for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
   d.allowOnly(allowed);
@@ -34,6 +35,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   if (p.hasVoidfractionMin)
     p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});
   p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
+  p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
   return p;
 }
 

@@ -32,6 +32,9 @@ struct CouplingProperties {
   bool hasVoidfractionMin = false;
   double voidfractionMin = 0.05;
   long logEvery = 1;
+  // The drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the exchange
+  // interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
+  double dragRelaxationLimit = 0.5;
 
   static CouplingProperties read(const std::string& file);
 };

@@ -58,6 +58,7 @@ void DemLink::pull(std::vector<ParticleState>& particles, std::vector<std::int64
     particles[i].x = Vec3(a->x[i][0], a->x[i][1], a->x[i][2]);
     particles[i].v = Vec3(a->v[i][0], a->v[i][1], a->v[i][2]);
     particles[i].radius = a->radius[i];
+    particles[i].mass = a->rmass[i];
     tags[i] = a->tag[i];
   }
 }

@@ -148,8 +148,9 @@ enum Total {
   kVz,  // sum of particle velocities
   kX,
   kY,
-  kZ,       // sum of particle positions
-  kRemote,  // particles whose fluid cell is on another rank than their DEM owner
+  kZ,            // sum of particle positions
+  kRemote,       // particles whose fluid cell is on another rank than their DEM owner
+  kDragLimited,  // particles whose drag coefficient was limited (dragRelaxationLimit)
   kNumSums,
   kMinVoidfraction = kNumSums,
   kNumTotals
@@ -351,6 +352,8 @@ void FoamCoupling::startDem() {
 
   // Time steps: one CFD step is exchangeEvery DEM steps, fixed.
   const double dtDem = link_->timeStep();
+  exchangeInterval_ = props_->exchangeEvery * dtDem;
+  dragRelaxationLimit_ = props_->dragRelaxationLimit;
   const double dtCfd = runTime.deltaTValue();
   const double expected = props_->exchangeEvery * dtDem;
   if (std::abs(dtCfd - expected) > 1e-9 * expected)
@@ -380,7 +383,7 @@ void FoamCoupling::evolve() {
 namespace {
 
 // Record layouts of the three point-to-point rounds of an exchange (doubles).
-constexpr int kR1 = 9;       // owner index, tag, x(3), v(3), radius
+constexpr int kR1 = 10;      // owner index, tag, x(3), v(3), radius, mass
 constexpr int kR2Head = 11;  // owner index, work index, local inside volume, holds centre,
                              // beta, F_explicit(3), U_i(3); then 3 per force model
 constexpr int kR3 = 14;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
@@ -429,7 +432,7 @@ void FoamCoupling::exchange() {
       if (q != rank && !sphereTouchesBox(p.x, p.radius, &boxes_[6 * q], &boxes_[6 * q + 3]))
         continue;
       buf[q].insert(buf[q].end(), {static_cast<double>(i), static_cast<double>(tags[i]), p.x.x,
-                                   p.x.y, p.x.z, p.v.x, p.v.y, p.v.z, p.radius});
+                                   p.x.y, p.x.z, p.v.x, p.v.y, p.v.z, p.radius, p.mass});
     }
   }
   std::vector<std::vector<double>> in = exchangeBuffers(buf, MPI_COMM_WORLD);
@@ -454,6 +457,7 @@ void FoamCoupling::exchange() {
       w.p.x = Vec3(r[2], r[3], r[4]);
       w.p.v = Vec3(r[5], r[6], r[7]);
       w.p.radius = r[8];
+      w.p.mass = r[9];
       // Seed: the cell this rank found the particle's centre in at the last exchange.
       const auto tag = static_cast<std::int64_t>(r[1]);
       const auto it = lastCell_.find(tag);
@@ -512,6 +516,7 @@ void FoamCoupling::exchange() {
     gradPInt = Foam::interpolation<Foam::vector>::New(scheme, tgradP());
   }
   const Foam::scalarField& vf = voidfraction_.primitiveField();
+  double limited = 0;
   for (Work& w : work) {
     const long c = w.cells.centreCell;
     if (c < 0) continue;
@@ -525,11 +530,26 @@ void FoamCoupling::exchange() {
     if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
     w.Ui = f.U;
     w.modelForces.resize(nModels);
+    std::vector<ParticleForce> fms(nModels);
     for (size_t m = 0; m < nModels; ++m) {
-      const ParticleForce fm = forceModels_[m]->force(w.p, f);
-      w.force.beta += fm.beta;
-      w.force.explicitForce += fm.explicitForce;
-      w.modelForces[m] = fm.total(f.U, w.p.v);
+      fms[m] = forceModels_[m]->force(w.p, f);
+      w.force.beta += fms[m].beta;
+      w.force.explicitForce += fms[m].explicitForce;
+    }
+    // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
+    // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
+    // capped yield-stress liquid near rest (mu up to viscosityCap). Limited to
+    // dragRelaxationLimit x m / T, on both sides (action = reaction), counted in the log.
+    const double betaMax = dragRelaxationLimit_ * w.p.mass / exchangeInterval_;
+    double scale = 1.0;
+    if (dragRelaxationLimit_ > 0 && w.force.beta > betaMax) {
+      scale = betaMax / w.force.beta;
+      w.force.beta = betaMax;
+      limited += 1.0;
+    }
+    for (size_t m = 0; m < nModels; ++m) {
+      fms[m].beta *= scale;
+      w.modelForces[m] = fms[m].total(f.U, w.p.v);
     }
   }
 
@@ -657,6 +677,7 @@ void FoamCoupling::exchange() {
   }
   totals_[kForceScale] = t.forceScale;
   totals_[kRemote] = remote;
+  totals_[kDragLimited] = limited;
   for (const auto& p : own)
     for (int k = 0; k < 3; ++k) {
       totals_[kVx + k] += p.v[k];
@@ -688,7 +709,7 @@ void FoamCoupling::writeLogHeader() {
           " forceScale = sum |F_i|.\n";
   csv_ << "time,demStep,particles,particlesOutside,particleVolume,outsideVolume,clippedVolume,"
           "fluidSeenVolume,volumeError,Fp_x,Fp_y,Fp_z,Ff_x,Ff_y,Ff_z,forceScale,actionReaction,"
-          "minVoidfraction,meanVx,meanVy,meanVz,meanX,meanY,meanZ,remote";
+          "minVoidfraction,meanVx,meanVy,meanVz,meanX,meanY,meanZ,remote,dragLimited";
   for (const auto& m : forceModels_)
     csv_ << "," << m->name() << "_x," << m->name() << "_y," << m->name() << "_z";
   csv_ << ",seconds\n";
@@ -708,7 +729,8 @@ void FoamCoupling::log(double seconds) {
              << ", outside " << T[kOutsideVolume] << " m3, clipped " << T[kClippedVolume]
              << " m3, action-reaction " << actionReaction << ", min voidfraction "
              << T[kMinVoidfraction] << ", fluid cell on another rank "
-             << static_cast<long>(T[kRemote]) << ", " << seconds << " s" << Foam::endl;
+             << static_cast<long>(T[kRemote]) << ", drag limited "
+             << static_cast<long>(T[kDragLimited]) << ", " << seconds << " s" << Foam::endl;
 
   if (!csv_.is_open() || exchanges_ % props_->logEvery != 0) return;
   csv_ << std::setprecision(17) << mesh_.time().value() << "," << link_->step() << ","
@@ -719,7 +741,7 @@ void FoamCoupling::log(double seconds) {
   for (Total k : {kFpX, kFpY, kFpZ, kFfX, kFfY, kFfZ, kForceScale}) csv_ << "," << T[k];
   csv_ << "," << actionReaction << "," << T[kMinVoidfraction];
   for (Total k : {kVx, kVy, kVz, kX, kY, kZ}) csv_ << "," << T[k] / np;
-  csv_ << "," << static_cast<long>(T[kRemote]);
+  csv_ << "," << static_cast<long>(T[kRemote]) << "," << static_cast<long>(T[kDragLimited]);
   for (double v : modelTotals_) csv_ << "," << v;
   csv_ << "," << seconds << "\n" << std::flush;
 }

@@ -25,6 +25,7 @@ struct ParticleState {
   Vec3 x;             // centre [m]
   Vec3 v;             // velocity [m/s]
   double radius = 0;  // [m]
+  double mass = 0;    // [kg] (for the drag relaxation limit)
   double volume() const { return 4.18879020478639098 * radius * radius * radius; }  // 4/3 pi r^3
 };
 
