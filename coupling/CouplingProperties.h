@@ -35,6 +35,8 @@ struct CouplingProperties {
   // The drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the exchange
   // interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
   double dragRelaxationLimit = 0.5;
+  // |U| above this (m/s) anywhere stops the run with the place and time (a diverging step).
+  double maxVelocity = 100;
 
   static CouplingProperties read(const std::string& file);
 };

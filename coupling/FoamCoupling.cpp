@@ -375,6 +375,28 @@ void FoamCoupling::startDem() {
   }
 }
 
+void FoamCoupling::checkFluid() const {
+  // A diverging step shows as a runaway velocity long before a NaN (OpenFOAM traps floating-point
+  // exceptions with a bare stack trace): stop with the field, the place and the time instead.
+  const Foam::vectorField& U = U_.primitiveField();
+  const Foam::scalarField& p = p_.primitiveField();
+  forAll(U, c) {
+    const double u = Foam::mag(U[c]);
+    if (!std::isfinite(u) || u > props_->maxVelocity || !std::isfinite(p[c])) {
+      const Foam::point& x = mesh_.C()[c];
+      std::ostringstream m;
+      m << "the fluid diverged at t = " << mesh_.time().value() << " s: field "
+        << (std::isfinite(u) && u <= props_->maxVelocity ? "p = " : "U, |U| = ")
+        << (std::isfinite(u) && u <= props_->maxVelocity ? p[c] : u) << " in cell " << c << " at ("
+        << x.x() << " " << x.y() << " " << x.z() << ") (maxVelocity " << props_->maxVelocity
+        << " m/s, couplingProperties). Outputs up to the last write time are kept "
+           "(time directories, postProcessing/, VTK/); a smaller exchangeEvery or "
+           "dragRelaxationLimit, or a finer DEM step, are the usual cures";
+      fatal(m.str());
+    }
+  }
+}
+
 void FoamCoupling::evolve() {
   dem_->run(props_->exchangeEvery);
   exchange();

@@ -56,7 +56,12 @@ void MixtureMonitor::finish() {
   rec_->indexSnapshots();
   rec_->writeSummary(settled_, rep_,
                      "  \"liquid_density_kg_m3\": " + std::to_string(scene_.fluidDensity) + ",\n");
-  if (rank_ == 0) progress_->update(rec_->time(), true);
+  if (rank_ == 0) {
+    progress_->update(rec_->time(), true);
+    // The DEM share of the wall time (bench/coupled_vs_dry.py splits DEM, coupling and fluid).
+    out_ << "[coupled " << scene_.name << "] wall time " << progress_->wallSeconds()
+         << " s, of which inside LIGGGHTS runs " << lig_.runSeconds() << " s" << std::endl;
+  }
 }
 
 }  // namespace mixflow::coupling

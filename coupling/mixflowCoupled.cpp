@@ -124,6 +124,7 @@ int runCoupled(int argc, char* argv[]) {
     // clang-format off
 #include "fluidStep.H"
     // clang-format on
+    coupling.checkFluid();
 
     runTime.write();
     if (monitor) monitor->afterStep();

@@ -46,6 +46,9 @@ def main():
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--end", type=float, default=0.3)
+    ap.add_argument("--divergence", action="store_true",
+                    help="instead: maxVelocity 1 m/s must stop the run with the place and time, "
+                         "keeping the outputs written so far (issue 4 test 6)")
     a = ap.parse_args()
 
     case = os.path.join(a.workdir, "W+P-quick")
@@ -57,8 +60,21 @@ def main():
     fc.set_entry(os.path.join(case, "system/controlDict"), "endTime", repr(a.end))
     env = dict(os.environ, MIXFLOW_ROOT=a.root, PATH=a.bindir + os.pathsep + os.environ["PATH"])
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    if a.divergence:
+        with open(os.path.join(case, "constant", "couplingProperties"), "a") as f:
+            f.write("maxVelocity 1.0;   // test: the collapse exceeds it within 0.2 s\n")
     r = subprocess.run(["bash", os.path.join(case, "Allrun"), str(a.np)], env=env, cwd=case,
                        capture_output=True, text=True)
+    if a.divergence:
+        log = open(os.path.join(case, "log.mixflowCoupled")).read()
+        dem_rows = rows(os.path.join(case, "postProcessing", "dem", "timeSeries.csv"))
+        msg = [ln for ln in log.splitlines() if "the fluid diverged at t =" in ln]
+        print(f"exit {r.returncode}; message: {msg[0] if msg else None}; "
+              f"{len(dem_rows)} time-series rows kept")
+        if r.returncode == 0 or not msg or " at (" not in msg[0] or len(dem_rows) < 2:
+            fc.fail("the run did not stop with the place and time, or lost its outputs")
+        print("PASS")
+        return
     if r.returncode != 0:
         fc.fail(f"Allrun failed ({r.returncode}):\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
 

@@ -381,3 +381,38 @@ TEST(GidaspowDrag, FixedBedGivesErgunPressureDrop) {
   EXPECT_NEAR(gidaspowBeta(d, rho, mu, 1.0, u, 0.8, true) * u, kPi * d * d / 8 * cd * rho * u * u,
               1e-15);
 }
+
+// Issue 4 test 6, the force laws at the extremes: Re_p -> 0, very large Re_p, eps_f at the floor
+// and at 1, a capped yield-stress liquid at rest. Every coefficient must be finite and positive
+// and reach the law's own limits; inputs outside the law's support throw with a message.
+TEST(ForceModels, DiFeliceExtremes) {
+  const double d = 0.024, rho = 1000;
+  // Re_p -> 0 (zero slip): the Stokes-like limit 0.125 * 4.8^2 * pi mu d eps^(1 - 3.7) (formulation
+  // A), 0.96 x Stokes' 3 pi mu d at eps_f = 1; continuous as the slip goes to zero.
+  for (double mu : {1e-3, 4.0, 1e4}) {
+    const double b0 = diFelice(d, rho, mu, 1.0, 0.0, false).beta;
+    EXPECT_NEAR(b0, 0.125 * 4.8 * 4.8 * kPi * mu * d, 1e-12 * b0) << "mu " << mu;
+    EXPECT_NEAR(diFelice(d, rho, mu, 1.0, 1e-14, false).beta, b0, 1e-5 * b0);
+    EXPECT_TRUE(std::isfinite(diFelice(d, rho, mu, 0.36, 0.0, true).beta));
+  }
+  // Re_p -> infinity (slip 1e3 m/s in water, Re_p = 2.4e7): Newton's regime, beta / slip ->
+  // 0.125 * 0.63^2 rho pi d^2 eps^(2 - 3.7).
+  const double slip = 1e3;
+  const DiFeliceTerms hi = diFelice(d, rho, 1e-3, 0.5, slip, false);
+  const double newton = 0.125 * 0.63 * 0.63 * rho * kPi * d * d * std::pow(0.5, 2 - 3.7);
+  EXPECT_GT(hi.reynolds, 1e7);
+  EXPECT_NEAR(hi.beta / slip, newton, 0.02 * newton);
+  // eps_f at the solver's floor (0.05) and at 1: finite, and larger at the floor.
+  const double bFloor = diFelice(d, rho, 1e-3, 0.05, 0.1, true).beta;
+  const double bOne = diFelice(d, rho, 1e-3, 1.0, 0.1, true).beta;
+  EXPECT_TRUE(std::isfinite(bFloor) && std::isfinite(bOne));
+  EXPECT_GT(bFloor, bOne);
+  // Outside the support: eps_f = 0, mu = 0, negative slip -> a message naming the values.
+  EXPECT_THROW(diFelice(d, rho, 1e-3, 0.0, 0.1, true), std::runtime_error);
+  EXPECT_THROW(diFelice(d, rho, 0.0, 0.5, 0.1, true), std::runtime_error);
+  try {
+    diFelice(d, rho, 1e-3, 0.0, 0.1, true);
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("eps_f 0"), std::string::npos) << e.what();
+  }
+}
