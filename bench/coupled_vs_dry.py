@@ -23,21 +23,12 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-import resource  # noqa: E402
-import subprocess  # noqa: E402
-import time  # noqa: E402
+from dem_driver_vs_liggghts import timed as _timed  # noqa: E402
 
 
 def timed(cmd, cwd):
     """(wall s, CPU s of the command and its children, stdout)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if res.returncode != 0:
-        sys.exit(f"failed ({res.returncode}): {' '.join(cmd)}\n{res.stdout[-2000:]}\n{res.stderr[-2000:]}")
-    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), res.stdout
+    return _timed(cmd, cwd, with_output=True)
 
 
 def set_entry(path, key, value):

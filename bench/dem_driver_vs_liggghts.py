@@ -29,7 +29,7 @@ def mpi_prefix(ranks):
     return ["mpirun"] + extra + ["-np", str(ranks)]
 
 
-def timed(cmd, cwd):
+def timed(cmd, cwd, with_output=False):
     """Wall seconds and CPU seconds (user + sys of the command and all its descendants, e.g. MPI ranks).
     CPU time is the fair measure on a shared machine: wall time also counts waiting for the core."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -40,7 +40,7 @@ def timed(cmd, cwd):
     if res.returncode != 0:
         sys.exit(f"failed ({res.returncode}): {' '.join(cmd)}\n{res.stdout[-2000:]}\n{res.stderr[-2000:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu
+    return (wall, cpu, res.stdout) if with_output else (wall, cpu)
 
 
 def particle_steps(script, natoms):
