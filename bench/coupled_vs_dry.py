@@ -23,6 +23,8 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import suite  # noqa: E402  (OpenFOAM-style dictionary editor)
 from dem_driver_vs_liggghts import timed as _timed  # noqa: E402
 
 
@@ -32,11 +34,8 @@ def timed(cmd, cwd):
 
 
 def set_entry(path, key, value):
-    text = open(path).read()
-    text, n = re.subn(rf"^(\s*){re.escape(key)}(\s+)[^;]*;", rf"\g<1>{key}\g<2>{value};", text,
-                      count=1, flags=re.M)
-    if n != 1:
-        sys.exit(f"cannot set {key} in {path}")
+    """Sets a top-level entry with the suite's dictionary editor (scripts/suite.py)."""
+    text, _ = suite.edit_dict(open(path).read(), {key: value}, note="bench")
     open(path, "w").write(text)
 
 

@@ -382,12 +382,12 @@ void FoamCoupling::checkFluid() const {
   const Foam::scalarField& p = p_.primitiveField();
   forAll(U, c) {
     const double u = Foam::mag(U[c]);
-    if (!std::isfinite(u) || u > props_->maxVelocity || !std::isfinite(p[c])) {
+    const bool badU = !std::isfinite(u) || u > props_->maxVelocity;
+    if (badU || !std::isfinite(p[c])) {
       const Foam::point& x = mesh_.C()[c];
       std::ostringstream m;
       m << "the fluid diverged at t = " << mesh_.time().value() << " s: field "
-        << (std::isfinite(u) && u <= props_->maxVelocity ? "p = " : "U, |U| = ")
-        << (std::isfinite(u) && u <= props_->maxVelocity ? p[c] : u) << " in cell " << c << " at ("
+        << (badU ? "U, |U| = " : "p = ") << (badU ? u : p[c]) << " in cell " << c << " at ("
         << x.x() << " " << x.y() << " " << x.z() << ") (maxVelocity " << props_->maxVelocity
         << " m/s, couplingProperties). Outputs up to the last write time are kept "
            "(time directories, postProcessing/, VTK/); a smaller exchangeEvery or "
@@ -539,6 +539,7 @@ void FoamCoupling::exchange() {
   }
   const Foam::scalarField& vf = voidfraction_.primitiveField();
   double limited = 0;
+  std::vector<ParticleForce> fms(nModels);  // per-model forces of the particle at hand
   for (Work& w : work) {
     const long c = w.cells.centreCell;
     if (c < 0) continue;
@@ -552,7 +553,6 @@ void FoamCoupling::exchange() {
     if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
     w.Ui = f.U;
     w.modelForces.resize(nModels);
-    std::vector<ParticleForce> fms(nModels);
     for (size_t m = 0; m < nModels; ++m) {
       fms[m] = forceModels_[m]->force(w.p, f);
       w.force.beta += fms[m].beta;

@@ -43,7 +43,7 @@ void MixtureMonitor::afterStep() {
   rec_->indexSnapshots();
   if (rank_ == 0)
     progress_->update(rec_->time(), false,
-                      ", granular front " + std::to_string(rep_.front).substr(0, 6) + " m");
+                      ", granular front " + dem::formatNumber(rep_.front, 4) + " m");
 }
 
 void MixtureMonitor::finish() {
@@ -54,8 +54,9 @@ void MixtureMonitor::finish() {
   rep_.stopReason = "endTime";
   rec_->finish(rep_);
   rec_->indexSnapshots();
-  rec_->writeSummary(settled_, rep_,
-                     "  \"liquid_density_kg_m3\": " + std::to_string(scene_.fluidDensity) + ",\n");
+  rec_->writeSummary(
+      settled_, rep_,
+      "  \"liquid_density_kg_m3\": " + dem::formatNumber(scene_.fluidDensity) + ",\n");
   if (rank_ == 0) {
     progress_->update(rec_->time(), true);
     // The DEM share of the wall time (bench/coupled_vs_dry.py splits DEM, coupling and fluid).

@@ -4,9 +4,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <ostream>
-#include <sstream>
 #include <stdexcept>
 
 #include "ContactTimes.h"

@@ -6,7 +6,6 @@
 #include <mpi.h>
 
 #include <iosfwd>
-#include <iostream>
 #include <memory>
 #include <string>
 

@@ -55,14 +55,19 @@ def subcritical_after_arrival(rows):
     t0 = first_time(rows, lambda r: r["front_bed_m"] >= SECTION_X)
     if t0 is None:
         return None, None
+    return t0, subcritical_from(rows, t0)
+
+
+def subcritical_from(rows, t0):
+    """First time after t0 from which Fr < 1 holds for HOLD_S (or to the end), or None."""
     after = [r for r in rows if r["time_s"] >= t0 and not math.isnan(r["section_froude"])]
     for i, r in enumerate(after):
         if r["section_froude"] < 1:
             hold = [q for q in after[i:] if q["time_s"] <= r["time_s"] + HOLD_S]
             if all(q["section_froude"] < 1 for q in hold) and (
                     hold[-1]["time_s"] >= r["time_s"] + HOLD_S - 0.05 or hold[-1] is after[-1]):
-                return t0, r["time_s"]
-    return t0, None
+                return r["time_s"]
+    return None
 
 
 def calibrate(case, t):

@@ -24,7 +24,7 @@ sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import report  # noqa: E402
 import suite  # noqa: E402
-from liquid_results import HOLD_S, SECTION_X  # noqa: E402
+from liquid_results import SECTION_X, first_time, subcritical_from  # noqa: E402
 
 PAPER_SUBCRITICAL = {"W&P": 0.6, "HB&P": 0.3, "B&P": 0.5}
 PAPER_SAVAGE_B = [0.28, 1.1]
@@ -32,27 +32,15 @@ PAPER_SAVAGE_B = [0.28, 1.1]
 
 def arrival_and_subcritical(s):
     rows = s.liquid
-    t0, rule = None, "liquid front (bed row, alpha >= 0.5) at x = 1.38 m"
-    for r in rows:
-        if r["front_bed_m"] >= SECTION_X:
-            t0 = r["time_s"]
-            break
+    rule = "liquid front (bed row, alpha >= 0.5) at x = 1.38 m"
+    t0 = first_time(rows, lambda r: r["front_bed_m"] >= SECTION_X)
     if t0 is None:
         rule = "first liquid at the section x = 1.38 m (the bed-row front stays below alpha = 0.5)"
-        for r in rows:
-            if not math.isnan(r["section_froude"]):
-                t0 = r["time_s"]
-                break
+        t0 = first_time(rows, lambda r: not math.isnan(r["section_froude"]))
     if t0 is None:
         return None, None, rule
-    after = [r for r in rows if r["time_s"] >= t0 and not math.isnan(r["section_froude"])]
-    for i, r in enumerate(after):
-        if r["section_froude"] < 1:
-            hold = [q for q in after[i:] if q["time_s"] <= r["time_s"] + HOLD_S]
-            if all(q["section_froude"] < 1 for q in hold) and hold[-1]["time_s"] >= min(
-                    r["time_s"] + HOLD_S - 0.05, after[-1]["time_s"]):
-                return t0, r["time_s"] - t0, rule
-    return t0, None, rule
+    ts = subcritical_from(rows, t0)
+    return t0, (None if ts is None else ts - t0), rule
 
 
 def main():

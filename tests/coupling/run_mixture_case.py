@@ -22,7 +22,6 @@ import argparse
 import csv
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -31,6 +30,9 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "cfd"))
 import foamcase as fc  # noqa: E402
+
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+import suite  # noqa: E402  (the OpenFOAM-style dictionary reader)
 
 
 def rows(path):
@@ -92,8 +94,8 @@ def main():
     ok &= worst_liq <= 1e-6
 
     dem = rows(os.path.join(pp, "dem", "timeSeries.csv"))
-    state = open(os.path.join(case, "dem", "settled.state")).read()
-    n0 = int(state.split("particles")[1].split(";")[0])
+    settled = suite.read_dict(os.path.join(case, "dem", "settled.state"))["settled"]
+    n0 = int(settled["particles"])
     last = dem[-1]
     total = (int(last["particles"]) + int(last["deleted_outlet"]) + int(last["deleted_top"]) +
              int(last["lost"]))
@@ -103,14 +105,10 @@ def main():
     ok &= total == n0 and float(last["time_s"]) >= a.end - 1e-3
 
     # Saturation: V_liquid(0) against the pore volume of the settled box.
-    height = float(state.split("height")[1].split(";")[0])
-    scene = open(os.path.join(case, "constant", "sceneProperties")).read()
-
-    def sample(key):
-        block = re.search(r"^sample\b[^{]*\{([^}]*)\}", scene, re.M).group(1)
-        return float(re.search(rf"\b{key}\s+([^;]+);", block).group(1))
-    L, W = sample("length"), sample("width")
-    vp = math.pi / 6 * 0.024**3
+    height = float(settled["height"])
+    scene = suite.read_dict(os.path.join(case, "constant", "sceneProperties"))
+    L, W = float(scene["sample"]["length"]), float(scene["sample"]["width"])
+    vp = math.pi / 6 * float(scene["particles"]["diameter"])**3
     pore = L * height * W - n0 * vp
     v0 = float(liq[0]["volume_domain_m3"])
     # The cell row the settled top cuts is part liquid (alpha) and part particles (eps_f of the
