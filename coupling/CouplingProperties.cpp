@@ -15,7 +15,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   std::vector<std::string> allowed = {
       "FoamFile",          "demScript",           "exchangeEvery",      "forceModels",
       "voidFractionModel", "interpolation",       "sourceDistribution", "voidfractionMin",
-      "logEvery",          "dragRelaxationLimit", "maxVelocity"};
+      "logEvery",          "dragRelaxationLimit", "maxVelocity",        "dragIntegration"};
   for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
   for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
   d.allowOnly(allowed);
@@ -35,6 +35,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   if (p.hasVoidfractionMin)
     p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});
   p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
+  p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
   p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
   p.maxVelocity = d.scalarOr("maxVelocity", 100.0, Range::positive());
   return p;

@@ -1,17 +1,22 @@
 // constant/couplingProperties: what a coupled case asks of the coupling (OpenFOAM dictionary
-// syntax, read with mixflow's validating reader). Example with every entry and its default:
+// syntax, read with mixflow's validating reader). Every entry with its default:
 //
-//   demScript          "system/in.liggghts";   // LIGGGHTS commands of the particle scene
-//   (required) exchangeEvery      100;           // DEM steps per exchange; CFD deltaT =
-//   exchangeEvery x DEM dt forceModels        (DiFeliceDrag buoyancy viscousForce);   // only these
-//   run (required) voidFractionModel  divided;       // divided | centre interpolation      cell;
-//   // cell | cellPoint: fluid values at a particle sourceDistribution volume;        // volume:
-//   reaction spread like the particle's volume;
-//                                     // centre: all in the centre's cell
-//   voidfractionMin    0.05;          // eps_f floor; default: mixflowProperties' voidfractionMin
-//   logEvery           1;             // exchanges between lines of
-//   postProcessing/coupling/exchange.csv DiFeliceDragCoeffs { divideByVoidfraction yes; }   //
-//   default: yes in formulation B dividedCoeffs      { nShells 3; nDirections 16; }
+//   demScript           "system/in.liggghts";  // LIGGGHTS commands of the scene (required)
+//   exchangeEvery       100;        // DEM steps per exchange; CFD deltaT = exchangeEvery x DEM dt
+//   forceModels         (DiFeliceDrag buoyancy viscousForce);  // only these run (required)
+//   voidFractionModel   divided;    // divided | centre
+//   interpolation       cell;       // cell | cellPoint: fluid values at a particle
+//   sourceDistribution  volume;     // volume: reaction spread like the particle's volume;
+//                                   // centre: all in the centre's cell
+//   voidfractionMin     0.05;       // eps_f floor; default: mixflowProperties' voidfractionMin
+//   logEvery            1;          // exchanges between lines of
+//   postProcessing/coupling/exchange.csv dragIntegration     implicit;   // implicit: drag updated
+//   at every DEM step (backward Euler);
+//                                   // held: the exchange's drag held over the interval
+//   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
+//   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
+//   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B
+//   dividedCoeffs       { nShells 3; nDirections 16; }
 #pragma once
 
 #include <string>
@@ -32,8 +37,12 @@ struct CouplingProperties {
   bool hasVoidfractionMin = false;
   double voidfractionMin = 0.05;
   long logEvery = 1;
-  // The drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the exchange
-  // interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
+  // implicit: beta, U and the explicit forces are held over the interval and the drag is updated
+  // with the particle's velocity at every DEM step (backward Euler, stable for any beta; see
+  // DemLink.h); held: the whole force of the exchange is held over the interval.
+  std::string dragIntegration = "implicit";
+  // held only: the drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the
+  // exchange interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
   double dragRelaxationLimit = 0.5;
   // |U| above this (m/s) anywhere stops the run with the place and time (a diverging step).
   double maxVelocity = 100;

@@ -7,6 +7,7 @@
 #include <fix_external.h>
 #include <fix_gravity.h>
 #include <lammps.h>
+#include <lmptype.h>
 #include <modify.h>
 #include <update.h>
 
@@ -17,13 +18,100 @@ namespace mixflow::coupling {
 
 namespace {
 const char* kFixId = "mixflowFluidForce";
-}
+const char* kStateId = "mixflowDragState";
+// Per-atom implicit-drag state: beta_eff, U(3), F_explicit(3), impulse(3), last drag(3).
+enum State { kBeta = 0, kU = 1, kFexp = 4, kImpulse = 7, kLastDrag = 10, kStateSize = 13 };
 
-DemLink::DemLink(dem::LiggghtsSession& session) : session_(session) {
-  // pf/array 1: the array is added to the atoms' forces at every step; no callback.
-  session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
+void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
+                          double**, double** fexternal) {
+  static_cast<DemLink*>(link)->implicitDrag(static_cast<std::int64_t>(step), nlocal, fexternal);
+}
+}  // namespace
+
+DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
+    : session_(session), mode_(mode) {
   if (!session_.lammps()->atom->tag_enable)
     throw std::runtime_error("coupling: LIGGGHTS atoms need IDs (atom_modify id yes)");
+  if (mode_ == DragIntegration::held) {
+    // pf/array 1: the array is added to the atoms' forces at every step; no callback.
+    session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
+    return;
+  }
+  // The state migrates with the atoms (exchange), is not needed on ghosts, not restarted.
+  std::string cmd =
+      std::string("fix ") + kStateId + " all property/atom " + kStateId + " vector no no no";
+  for (int k = 0; k < kStateSize; ++k) cmd += " 0";
+  session_.command(cmd);
+  // pf/callback 1 1: the callback fills fexternal at every step, which is then added to f.
+  session_.command(std::string("fix ") + kFixId + " all external pf/callback 1 1");
+  fix()->set_callback(&implicitDragCallback, this);
+}
+
+double** DemLink::state() const {
+  LAMMPS_NS::Modify* modify = session_.lammps()->modify;
+  const int i = modify->find_fix(kStateId);
+  if (i < 0)
+    throw std::runtime_error(std::string("coupling: LIGGGHTS fix ") + kStateId + " not found");
+  return modify->fix[i]->array_atom;
+}
+
+// Backward Euler for the drag in the half-step velocity update of velocity Verlet: the velocity
+// after this step's force is v' = v + dt (f_other + F_explicit + F_d) / m with F_d = beta (U -
+// v'), hence F_d = beta_eff (U - v - dt (f_other + F_explicit) / m). LIGGGHTS applies each
+// step's force over dt (half in final_integrate, half in the next initial_integrate); a setup
+// (a run after atoms were deleted) recomputes the force of the same step, which then replaces
+// the old one for the second half: the impulse is corrected by dt/2 (new - old).
+void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
+  LAMMPS_NS::LAMMPS* lmp = session_.lammps();
+  const LAMMPS_NS::Atom* a = lmp->atom;
+  double** s = state();
+  const double dt = lmp->update->dt;
+  const bool repeat = step == lastCallStep_;
+  lastCallStep_ = step;
+  for (int i = 0; i < nlocal; ++i) {
+    double* si = s[i];
+    const double dtm = dt / a->rmass[i];
+    for (int k = 0; k < 3; ++k) {
+      const double fexp = si[kFexp + k];
+      const double drag = si[kBeta] * (si[kU + k] - a->v[i][k] - dtm * (a->f[i][k] + fexp));
+      si[kImpulse + k] += repeat ? 0.5 * dt * (drag - si[kLastDrag + k]) : dt * drag;
+      si[kLastDrag + k] = drag;
+      fexternal[i][k] = drag + fexp;
+    }
+  }
+}
+
+void DemLink::pullApplied(std::vector<AppliedDrag>& applied) const {
+  if (mode_ != DragIntegration::implicit)
+    throw std::logic_error("coupling: pullApplied needs dragIntegration implicit");
+  double** s = state();
+  const int n = session_.lammps()->atom->nlocal;
+  applied.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const double* si = s[i];
+    applied[i].betaEff = si[kBeta];
+    applied[i].U = Vec3(si[kU], si[kU + 1], si[kU + 2]);
+    applied[i].explicitForce = Vec3(si[kFexp], si[kFexp + 1], si[kFexp + 2]);
+    applied[i].impulse = Vec3(si[kImpulse], si[kImpulse + 1], si[kImpulse + 2]);
+  }
+}
+
+void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
+  if (mode_ != DragIntegration::implicit)
+    throw std::logic_error("coupling: pushImplicit needs dragIntegration implicit");
+  double** s = state();
+  const int n = session_.lammps()->atom->nlocal;
+  if (static_cast<int>(next.size()) != n)
+    throw std::runtime_error("coupling: force count differs from the local particle count");
+  for (int i = 0; i < n; ++i) {
+    double* si = s[i];
+    si[kBeta] = next[i].betaEff;
+    for (int k = 0; k < 3; ++k) {
+      si[kU + k] = next[i].U[k];
+      si[kFexp + k] = next[i].explicitForce[k];
+      si[kImpulse + k] = 0.0;
+    }
+  }
 }
 
 bool DemLink::periodicZ(double& lo, double& hi) const {
@@ -64,6 +152,8 @@ void DemLink::pull(std::vector<ParticleState>& particles, std::vector<std::int64
 }
 
 void DemLink::push(const std::vector<Vec3>& forces) {
+  if (mode_ != DragIntegration::held)
+    throw std::logic_error("coupling: push needs dragIntegration held");
   LAMMPS_NS::FixExternal* f = fix();
   const int n = session_.lammps()->atom->nlocal;
   if (static_cast<int>(forces.size()) != n)

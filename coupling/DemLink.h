@@ -1,10 +1,22 @@
 // The DEM side of the exchange: reads the particles a rank owns from LIGGGHTS and hands them the
-// fluid force, which LIGGGHTS then adds at every DEM step until the next exchange.
+// fluid force, which LIGGGHTS then applies at every DEM step until the next exchange.
 //
-// Mechanism: `fix mixflowFluidForce all external pf/array 1` (LIGGGHTS 3.8 / LAMMPS fix external):
-// a per-atom array fexternal that the fix adds to f in post_force at every step; it migrates with
-// its atoms between ranks and through atom sorting. The coupling writes it for all local atoms at
-// each exchange, so the force is held constant over the exchange interval.
+// Mechanism: `fix mixflowFluidForce all external` (LIGGGHTS 3.8 / LAMMPS fix external), a per-atom
+// array fexternal that the fix adds to f in post_force at every step; it migrates with its atoms
+// between ranks and through atom sorting. Two ways to integrate the drag (dragIntegration):
+//   held      `pf/array`: the coupling writes F = beta (U - v) + F_explicit at each exchange and
+//             the force is held over the interval (needs beta T / m < 2 to be stable: see
+//             dragRelaxationLimit);
+//   implicit  `pf/callback 1 1`: the exchange writes beta, U and F_explicit into a per-atom
+//             `fix property/atom` (migrates like the atoms); at every DEM step a callback gives
+//             F_d = beta_eff (U - v - dt (f_other + F_explicit) / m), beta_eff = beta / (1 +
+//             beta dt / m): backward Euler for the drag in LIGGGHTS' velocity-Verlet half-step
+//             update, stable for any beta, with the exact terminal slip f_other / beta. It adds
+//             up the drag impulse it applied, which the next exchange returns to the fluid.
+//             f_other is the force LIGGGHTS has summed when this fix's post_force runs (pair,
+//             gravity, walls: fixes defined before it), so this fix must be the last force fix.
+//             Particles must be integrated by LIGGGHTS (a fixed bed without an integrator
+//             needs `held`).
 // Caveat (checked): fix external does not initialise the array for atoms created during a run
 // (memory->grow), so particles must not be inserted during a coupled interval; pull() stops the
 // run if the global atom count grew.
@@ -20,20 +32,37 @@
 
 namespace LAMMPS_NS {
 class FixExternal;
-}
+class Fix;
+}  // namespace LAMMPS_NS
 
 namespace mixflow::coupling {
 
+// What the implicit drag of one particle used over the last interval, and the impulse it gave.
+struct AppliedDrag {
+  double betaEff = 0;  // beta / (1 + beta dt / m) [kg/s]
+  Vec3 U;              // fluid velocity held over the interval [m/s]
+  Vec3 explicitForce;  // held explicit force [N]
+  Vec3 impulse;        // drag impulse applied over the interval [N s]
+};
+
 class DemLink {
  public:
+  enum class DragIntegration { held, implicit };
+
   // Defines the force fix; call after the scene's script, before the first run.
-  explicit DemLink(dem::LiggghtsSession& session);
+  DemLink(dem::LiggghtsSession& session, DragIntegration mode);
 
   // Local particles now (positions at the current DEM step).
   void pull(std::vector<ParticleState>& particles, std::vector<std::int64_t>& tags);
-  // Force on local particle i (same order as the last pull) [N].
+  // implicit: what each local particle's drag used and applied since the last pushImplicit (same
+  // order as the last pull).
+  void pullApplied(std::vector<AppliedDrag>& applied) const;
+  // held: force on local particle i (same order as the last pull) [N].
   void push(const std::vector<Vec3>& forces);
+  // implicit: the next interval's beta_eff, U and explicit force; resets the impulses.
+  void pushImplicit(const std::vector<AppliedDrag>& next);
 
+  DragIntegration mode() const { return mode_; }
   double timeStep() const;
   long step() const { return session_.step(); }
   // The DEM box is periodic in z: true and its z bounds.
@@ -42,10 +71,16 @@ class DemLink {
   Vec3 gravity() const;
   dem::LiggghtsSession& session() { return session_; }
 
+  // fix external's per-step callback (implicit mode).
+  void implicitDrag(std::int64_t step, int nlocal, double** fexternal);
+
  private:
   LAMMPS_NS::FixExternal* fix() const;
+  double** state() const;  // the per-atom implicit-drag state (property/atom array)
   dem::LiggghtsSession& session_;
+  DragIntegration mode_;
   long lastGlobalCount_ = -1;
+  std::int64_t lastCallStep_ = -1;
 };
 
 }  // namespace mixflow::coupling

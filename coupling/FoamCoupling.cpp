@@ -246,7 +246,8 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
 
   Foam::Info << "Coupling (constant/couplingProperties): exchange every " << props_->exchangeEvery
              << " DEM steps (DEM dt " << link_->timeStep() << " s, CFD dt " << runTime.deltaTValue()
-             << " s), interpolation " << props_->interpolation.c_str() << ", reaction distribution "
+             << " s), drag integration " << props_->dragIntegration.c_str() << ", interpolation "
+             << props_->interpolation.c_str() << ", reaction distribution "
              << props_->sourceDistribution.c_str() << ", voidfractionMin " << voidfractionMin_
              << Foam::nl << "  void fraction: " << voidFractionModel_->describe().c_str()
              << Foam::nl;
@@ -339,12 +340,17 @@ void FoamCoupling::startDem() {
     dem_->command(line);
   }
 
-  link_ = std::make_unique<DemLink>(*dem_);
+  link_ = std::make_unique<DemLink>(*dem_, props_->dragIntegration == "held"
+                                               ? DemLink::DragIntegration::held
+                                               : DemLink::DragIntegration::implicit);
   // The external force array is not initialised by LIGGGHTS: zero it before the setup run.
   std::vector<ParticleState> particles;
   std::vector<std::int64_t> tags;
   link_->pull(particles, tags);
-  link_->push(std::vector<Vec3>(particles.size()));
+  if (link_->mode() == DemLink::DragIntegration::held)
+    link_->push(std::vector<Vec3>(particles.size()));
+  else
+    link_->pushImplicit(std::vector<AppliedDrag>(particles.size()));
   dem_->command("run 0");
   dem_->invalidateSetup();
   demStep0_ = link_->step();
@@ -352,6 +358,7 @@ void FoamCoupling::startDem() {
 
   // Time steps: one CFD step is exchangeEvery DEM steps, fixed.
   const double dtDem = link_->timeStep();
+  demTimeStep_ = dtDem;
   exchangeInterval_ = props_->exchangeEvery * dtDem;
   dragRelaxationLimit_ = props_->dragRelaxationLimit;
   const double dtCfd = runTime.deltaTValue();
@@ -390,8 +397,8 @@ void FoamCoupling::checkFluid() const {
         << (badU ? "U, |U| = " : "p = ") << (badU ? u : p[c]) << " in cell " << c << " at ("
         << x.x() << " " << x.y() << " " << x.z() << ") (maxVelocity " << props_->maxVelocity
         << " m/s, couplingProperties). Outputs up to the last write time are kept "
-           "(time directories, postProcessing/, VTK/); a smaller exchangeEvery or "
-           "dragRelaxationLimit, or a finer DEM step, are the usual cures";
+           "(time directories, postProcessing/, VTK/); dragIntegration implicit, a smaller "
+           "exchangeEvery or a finer DEM step are the usual cures";
       fatal(m.str());
     }
   }
@@ -445,6 +452,9 @@ void FoamCoupling::exchange() {
   std::vector<std::int64_t> tags;
   link_->pull(own, tags);
   const size_t nOwn = own.size();
+  const bool implicitDrag = link_->mode() == DemLink::DragIntegration::implicit;
+  std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
+  if (implicitDrag) link_->pullApplied(applied);
 
   // R1: particles to the ranks whose mesh they touch.
   std::vector<std::vector<double>> buf(size);
@@ -558,16 +568,22 @@ void FoamCoupling::exchange() {
       w.force.beta += fms[m].beta;
       w.force.explicitForce += fms[m].explicitForce;
     }
-    // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
-    // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
-    // capped yield-stress liquid near rest (mu up to viscosityCap). Limited to
-    // dragRelaxationLimit x m / T, on both sides (action = reaction), counted in the log.
-    const double betaMax = dragRelaxationLimit_ * w.p.mass / exchangeInterval_;
     double scale = 1.0;
-    if (dragRelaxationLimit_ > 0 && w.force.beta > betaMax) {
-      scale = betaMax / w.force.beta;
-      w.force.beta = betaMax;
-      limited += 1.0;
+    if (implicitDrag) {
+      // Integrated at every DEM step (DemLink): the coefficient of the backward-Euler update.
+      scale = 1.0 / (1.0 + w.force.beta * demTimeStep_ / w.p.mass);
+      w.force.beta *= scale;
+    } else {
+      // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
+      // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
+      // capped yield-stress liquid near rest (mu up to viscosityCap). Limited to
+      // dragRelaxationLimit x m / T, on both sides (action = reaction), counted in the log.
+      const double betaMax = dragRelaxationLimit_ * w.p.mass / exchangeInterval_;
+      if (dragRelaxationLimit_ > 0 && w.force.beta > betaMax) {
+        scale = betaMax / w.force.beta;
+        w.force.beta = betaMax;
+        limited += 1.0;
+      }
     }
     for (size_t m = 0; m < nModels; ++m) {
       fms[m].beta *= scale;
@@ -605,6 +621,11 @@ void FoamCoupling::exchange() {
     int host = -1;  // lowest rank holding the centre
     ParticleForce force;
     Vec3 Ui;
+    // What the fluid receives for this CFD step: the force at this exchange (held), or the mean
+    // force the particle actually received over the DEM interval just run (implicit), written as
+    // beta (U - v) + F_explicit with the velocity v that reproduces the drag impulse.
+    ParticleForce reaction;
+    Vec3 reactionU, reactionV;
   };
   std::vector<Owned> owned(nOwn);
   modelTotals_.assign(3 * nModels, 0.0);
@@ -624,17 +645,37 @@ void FoamCoupling::exchange() {
         for (size_t m = 0; m < 3 * nModels; ++m) modelTotals_[m] += r[kR2Head + m];
       }
     }
-  std::vector<Vec3> forces(nOwn);
+  std::vector<Vec3> forces(implicitDrag ? 0 : nOwn);
+  std::vector<AppliedDrag> next(implicitDrag ? nOwn : 0);
   double remote = 0;
   for (size_t i = 0; i < nOwn; ++i) {
     Owned& o = owned[i];
     assembly_->countParticle(own[i], std::max(0.0, own[i].volume() - o.inside), o.host >= 0);
     if (o.host < 0) continue;  // centre in no cell of the mesh: no fluid force
     if (o.host != rank) remote += 1;
-    forces[i] = o.force.total(o.Ui, own[i].v);
-    assembly_->addParticleForce(own[i], o.force, o.Ui);
+    o.reaction = o.force;
+    o.reactionU = o.Ui;
+    o.reactionV = own[i].v;
+    if (implicitDrag) {
+      next[i] = AppliedDrag{o.force.beta, o.Ui, o.force.explicitForce, Vec3()};
+      if (exchanges_ > 0) {  // the first exchange has no interval behind it
+        const AppliedDrag& a = applied[i];
+        o.reaction.beta = a.betaEff;
+        o.reaction.explicitForce = a.explicitForce;
+        o.reactionU = a.U;
+        if (a.betaEff > 0) o.reactionV = a.U - (1.0 / (a.betaEff * exchangeInterval_)) * a.impulse;
+      }
+    } else {
+      forces[i] = o.force.total(o.Ui, own[i].v);
+    }
+    ParticleState p = own[i];
+    p.v = o.reactionV;
+    assembly_->addParticleForce(p, o.reaction, o.reactionU);
   }
-  link_->push(forces);
+  if (implicitDrag)
+    link_->pushImplicit(next);
+  else
+    link_->push(forces);
 
   // R3: the reaction to the ranks holding the particle's parts.
   buf.assign(size, {});
@@ -646,12 +687,13 @@ void FoamCoupling::exchange() {
       const bool isHost = part.centre && part.rank == o.host && !hostDone;
       hostDone = hostDone || isHost;
       if (!isHost && part.inside <= 0) continue;
-      const ParticleState& p = own[i];
+      const ParticleForce& f = o.reaction;
+      const Vec3& U = o.reactionU;
+      const Vec3& v = o.reactionV;
       buf[part.rank].insert(
           buf[part.rank].end(),
-          {static_cast<double>(part.workIndex), o.force.beta, o.force.explicitForce.x,
-           o.force.explicitForce.y, o.force.explicitForce.z, o.Ui.x, o.Ui.y, o.Ui.z, p.v.x, p.v.y,
-           p.v.z, o.inside, isHost ? 1.0 : 0.0, 0.0});
+          {static_cast<double>(part.workIndex), f.beta, f.explicitForce.x, f.explicitForce.y,
+           f.explicitForce.z, U.x, U.y, U.z, v.x, v.y, v.z, o.inside, isHost ? 1.0 : 0.0, 0.0});
     }
   }
   in = exchangeBuffers(buf, MPI_COMM_WORLD);

@@ -52,6 +52,7 @@ def write_bed_case(case, U, drag, dt_dem=1e-5, every=100, end=0.05):
         f"set group all diameter {D!r} density 2000\n"  # no integrator: the bed is fixed
     coupling = f"""demScript "system/in.liggghts";
 exchangeEvery {every};
+dragIntegration held;  // the bed is not integrated by LIGGGHTS (DemLink.h)
 forceModels ({drag} buoyancy);
 voidFractionModel centre;
 interpolation cell;
