@@ -8,7 +8,11 @@ The scene is cases/W+P-quick with the Herschel-Bulkley liquid of case HB (813 gr
 0.06 m, 1.5 s) -- a quick-size HB&P; the dry twin is the same scene with content particles. Both
 settle the same sample (same seed); the settling is timed separately and left out of both.
 
-usage: coupled_vs_dry.py [--end 1.0] [--json OUT] [--bin build/bin]
+usage: coupled_vs_dry.py [--end 1.0] [--exchange-every 25,100] [--drag-integration implicit|held]
+                         [--json OUT] [--bin build/bin]
+With several exchange intervals each coupled run is compared with the same dry twin, and the
+fronts and particle kinetic energy at half time and at the end are reported with their change
+from the first interval's run: the speed/accuracy trade of the exchange interval.
 CPU seconds (user + sys of the programs) are compared: wall time also counts waiting for a core."""
 import argparse
 import csv
@@ -39,11 +43,47 @@ def set_entry(path, key, value):
     open(path, "w").write(text)
 
 
+def last_row_at(path, t):
+    """The last row of a mixflow time series (CSV, '#' comments) with time_s <= t."""
+    with open(path) as f:
+        rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
+    return [r for r in rows if float(r["time_s"]) <= t + 1e-9][-1]
+
+
+def observables(case, end):
+    """At half the run and at its end: the fronts (single-particle or single-cell quantities, noisy
+    in a small scene), and integral ones: the particles' and the liquid's potential energy released
+    since t = 0, the particles' kinetic energy and their mean x."""
+    out = {}
+    dem = os.path.join(case, "postProcessing", "dem", "timeSeries.csv")
+    liq = os.path.join(case, "postProcessing", "liquid", "timeSeries.csv")
+    g0, l0 = last_row_at(dem, 0.0), last_row_at(liq, 0.0)
+    with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+        ex = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
+    for t in (0.5 * end, end):
+        g, lq = last_row_at(dem, t), last_row_at(liq, t)
+        e = [r for r in ex if float(r["time"]) <= t + 1e-9][-1]
+        out[f"granular_front_m_at_{t:g}s"] = float(g["front_x_m"])
+        out[f"liquid_front_m_at_{t:g}s"] = float(lq["front_bed_m"])
+        out[f"particle_pe_released_J_at_{t:g}s"] = float(g0["pe_J"]) - float(g["pe_J"])
+        out[f"liquid_pe_released_J_at_{t:g}s"] = (float(l0["potential_energy_J"]) -
+                                                  float(lq["potential_energy_J"]))
+        out[f"particle_ke_J_at_{t:g}s"] = float(g["ke_translational_J"])
+        out[f"particle_mean_x_m_at_{t:g}s"] = float(e["meanX"])
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--end", type=float, default=1.0)
     ap.add_argument("--json")
+    ap.add_argument("--keep", action="store_true", help="keep the run directories (printed)")
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"))
+    ap.add_argument("--exchange-every", default="",
+                    help="DEM steps per exchange, one coupled run each, e.g. 25,100 (default: "
+                    "the case's couplingProperties)")
+    ap.add_argument("--drag-integration", choices=("implicit", "held"),
+                    help="couplingProperties dragIntegration (default: the case's)")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="mixflow-bench-cpl-")
     env_path = a.bin + os.pathsep + os.environ["PATH"]
@@ -62,6 +102,12 @@ def main():
     text = text[:text.index("liquid   //")] + hb[hb.index("liquid   //"):]
     open(sp, "w").write(text)
     set_entry(os.path.join(cpl, "system", "controlDict"), "endTime", repr(a.end))
+    cp = os.path.join(cpl, "constant", "couplingProperties")
+    if a.drag_integration:
+        set_entry(cp, "dragIntegration", a.drag_integration)
+    props = suite.read_dict(cp)
+    everies = [int(n) for n in a.exchange_every.split(",")] if a.exchange_every else \
+        [int(props["exchangeEvery"])]
     # The dry twin: same particles, walls, DEM settings; no liquid.
     dry = os.path.join(work, "P-twin")
     os.makedirs(os.path.join(dry, "constant"))
@@ -73,34 +119,49 @@ def main():
 
     mf = lambda p: os.path.join(a.bin, p)  # noqa: E731
     w_settle, c_settle, _ = timed([mf("mixflowDem"), "-case", cpl, "-settleOnly"], cpl)
-    timed([mf("mixflowPrepare"), "-case", cpl], cpl)
-    timed(["blockMesh", "-case", cpl], cpl)
-    w_cpl, c_cpl, out = timed([mf("mixflowCoupled"), "-case", cpl], cpl)
     w_dry_all, c_dry_all, _ = timed([mf("mixflowDem"), "-case", dry], dry)
     c_dry = c_dry_all - c_settle  # the same settling (same seed, same commands)
-    m = re.search(r"inside LIGGGHTS runs ([0-9.eE+-]+) s", out)
-    dem_s = float(m.group(1)) if m else float("nan")
-    with open(os.path.join(cpl, "postProcessing", "coupling", "exchange.csv")) as f:
-        rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
-    coupling_s = sum(float(r["seconds"]) for r in rows)
-    summ = json.load(open(os.path.join(cpl, "postProcessing", "dem", "summary.json")))
-    fluid_s = w_cpl - dem_s - coupling_s
+    runs = []
+    for n in everies:
+        case = os.path.join(work, f"HB+P-quick-every{n}")
+        shutil.copytree(cpl, case)  # the settled sample included
+        set_entry(os.path.join(case, "constant", "couplingProperties"), "exchangeEvery", str(n))
+        timed([mf("mixflowPrepare"), "-case", case], case)
+        timed(["blockMesh", "-case", case], case)
+        w_cpl, c_cpl, out = timed([mf("mixflowCoupled"), "-case", case], case)
+        m = re.search(r"inside LIGGGHTS runs ([0-9.eE+-]+) s", out)
+        dem_s = float(m.group(1)) if m else float("nan")
+        with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+            rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
+        coupling_s = sum(float(r["seconds"]) for r in rows)
+        summ = json.load(open(os.path.join(case, "postProcessing", "dem", "summary.json")))
+        runs.append({
+            "exchange_every": n, "coupled_cpu_s": c_cpl, "ratio_coupled_over_dry": c_cpl / c_dry,
+            "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
+                "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
+                "fluid_and_rest": w_cpl - dem_s - coupling_s},
+            "observables": observables(case, a.end), "particles": summ["settled"]["particles"]})
+    base = runs[0]["observables"]
+    for r in runs[1:]:  # how far each observable moves from the shortest interval's value
+        r["change_vs_every%d" % runs[0]["exchange_every"]] = {
+            k: v - base[k] for k, v in r["observables"].items()}
     res = {
         "scene": "W+P-quick geometry with case HB's liquid (813 grains, 2-D fluid 0.06 m)",
-        "simulated_s": a.end, "particles": summ["settled"]["particles"],
-        "settle_cpu_s": c_settle,
-        "dry_collapse_cpu_s": c_dry, "coupled_cpu_s": c_cpl,
-        "ratio_coupled_over_dry": c_cpl / c_dry, "target_ratio": 1.3,
-        "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
-            "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s, "fluid_and_rest": fluid_s},
-        "command": "python3 bench/coupled_vs_dry.py" + (f" --end {a.end}" if a.end != 1.0 else ""),
+        "drag_integration": props.get("dragIntegration", "implicit"),
+        "simulated_s": a.end, "particles": runs[0]["particles"],
+        "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry, "target_ratio": 1.3,
+        "runs": runs,
+        "command": " ".join(["python3 bench/coupled_vs_dry.py"] + sys.argv[1:]),
     }
     print(json.dumps(res, indent=2))
     if a.json:
         with open(a.json, "w") as f:
             json.dump(res, f, indent=2)
             f.write("\n")
-    shutil.rmtree(work, ignore_errors=True)
+    if a.keep:
+        print(f"runs kept in {work}")
+    else:
+        shutil.rmtree(work, ignore_errors=True)
 
 
 if __name__ == "__main__":

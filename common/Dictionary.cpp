@@ -54,6 +54,12 @@ class DictionaryParser {
         return;
       }
       const int line = line_;
+      if (s_[pos_] == '#') {
+        // An OpenFOAM directive (#include "file", #inputMode ...) runs to the end of its line;
+        // mixflow reads only the entries written in the file itself.
+        while (pos_ < s_.size() && s_[pos_] != '\n') ++pos_;
+        continue;
+      }
       std::string key = word();
       if (key.empty()) error("expected an entry name");
       skipSpace();

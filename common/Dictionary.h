@@ -1,5 +1,7 @@
 // Reader for OpenFOAM-style dictionaries (the convention users of this simulator already know):
 //   key value;   key v1 v2 v3;   key (1 2 3);   name { ... }   // and /* */ comments.
+// Directives (#include "file" ...) are skipped to the end of their line: only the entries written
+// in the file itself are read.
 // Every lookup validates its value and throws InputError with the file, the dotted entry path and
 // the allowed range, so bad input stops before any run starts.
 #pragma once

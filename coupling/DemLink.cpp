@@ -19,7 +19,7 @@ namespace mixflow::coupling {
 namespace {
 const char* kFixId = "mixflowFluidForce";
 const char* kStateId = "mixflowDragState";
-// Per-atom implicit-drag state: beta_eff, U(3), F_explicit(3), impulse(3), last drag(3).
+// Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3).
 enum State { kBeta = 0, kU = 1, kFexp = 4, kImpulse = 7, kLastDrag = 10, kStateSize = 13 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -71,9 +71,10 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   for (int i = 0; i < nlocal; ++i) {
     double* si = s[i];
     const double dtm = dt / a->rmass[i];
+    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * dtm);
     for (int k = 0; k < 3; ++k) {
       const double fexp = si[kFexp + k];
-      const double drag = si[kBeta] * (si[kU + k] - a->v[i][k] - dtm * (a->f[i][k] + fexp));
+      const double drag = betaEff * (si[kU + k] - a->v[i][k] - dtm * (a->f[i][k] + fexp));
       si[kImpulse + k] += repeat ? 0.5 * dt * (drag - si[kLastDrag + k]) : dt * drag;
       si[kLastDrag + k] = drag;
       fexternal[i][k] = drag + fexp;
@@ -89,7 +90,7 @@ void DemLink::pullApplied(std::vector<AppliedDrag>& applied) const {
   applied.resize(n);
   for (int i = 0; i < n; ++i) {
     const double* si = s[i];
-    applied[i].betaEff = si[kBeta];
+    applied[i].beta = si[kBeta];
     applied[i].U = Vec3(si[kU], si[kU + 1], si[kU + 2]);
     applied[i].explicitForce = Vec3(si[kFexp], si[kFexp + 1], si[kFexp + 2]);
     applied[i].impulse = Vec3(si[kImpulse], si[kImpulse + 1], si[kImpulse + 2]);
@@ -105,7 +106,7 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
     throw std::runtime_error("coupling: force count differs from the local particle count");
   for (int i = 0; i < n; ++i) {
     double* si = s[i];
-    si[kBeta] = next[i].betaEff;
+    si[kBeta] = next[i].beta;
     for (int k = 0; k < 3; ++k) {
       si[kU + k] = next[i].U[k];
       si[kFexp + k] = next[i].explicitForce[k];

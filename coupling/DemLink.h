@@ -39,7 +39,7 @@ namespace mixflow::coupling {
 
 // What the implicit drag of one particle used over the last interval, and the impulse it gave.
 struct AppliedDrag {
-  double betaEff = 0;  // beta / (1 + beta dt / m) [kg/s]
+  double beta = 0;     // drag coefficient of the force law [kg/s]
   Vec3 U;              // fluid velocity held over the interval [m/s]
   Vec3 explicitForce;  // held explicit force [N]
   Vec3 impulse;        // drag impulse applied over the interval [N s]
@@ -59,7 +59,7 @@ class DemLink {
   void pullApplied(std::vector<AppliedDrag>& applied) const;
   // held: force on local particle i (same order as the last pull) [N].
   void push(const std::vector<Vec3>& forces);
-  // implicit: the next interval's beta_eff, U and explicit force; resets the impulses.
+  // implicit: the next interval's beta, U and explicit force; resets the impulses.
   void pushImplicit(const std::vector<AppliedDrag>& next);
 
   DragIntegration mode() const { return mode_; }

@@ -358,7 +358,6 @@ void FoamCoupling::startDem() {
 
   // Time steps: one CFD step is exchangeEvery DEM steps, fixed.
   const double dtDem = link_->timeStep();
-  demTimeStep_ = dtDem;
   exchangeInterval_ = props_->exchangeEvery * dtDem;
   dragRelaxationLimit_ = props_->dragRelaxationLimit;
   const double dtCfd = runTime.deltaTValue();
@@ -402,6 +401,15 @@ void FoamCoupling::checkFluid() const {
       fatal(m.str());
     }
   }
+}
+
+// Implicit drag: the coefficient the fluid's step sees, beta_T = beta / (1 + beta T / m) (backward
+// Euler over the CFD step T). A fluid velocity change dU over the step carries the particle along
+// with impulse beta_T T dU <= m dU: in the rigid limit (beta T >> m) the fluid takes on the
+// particles' inertia, no more, whereas beta itself (up to 1e4 Pa s Stokes drag) would add an
+// inertia beta T that no particle has.
+double FoamCoupling::fluidSideBeta(double beta, double mass) const {
+  return beta / (1.0 + beta * exchangeInterval_ / mass);
 }
 
 void FoamCoupling::evolve() {
@@ -570,9 +578,9 @@ void FoamCoupling::exchange() {
     }
     double scale = 1.0;
     if (implicitDrag) {
-      // Integrated at every DEM step (DemLink): the coefficient of the backward-Euler update.
-      scale = 1.0 / (1.0 + w.force.beta * demTimeStep_ / w.p.mass);
-      w.force.beta *= scale;
+      // The drag law's beta goes to the particle (DemLink integrates it at every DEM step); the
+      // model columns of the log show the fluid-side coefficient (see fluidSideBeta).
+      scale = fluidSideBeta(w.force.beta, w.p.mass) / std::max(w.force.beta, 1e-300);
     } else {
       // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
       // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
@@ -658,12 +666,16 @@ void FoamCoupling::exchange() {
     o.reactionV = own[i].v;
     if (implicitDrag) {
       next[i] = AppliedDrag{o.force.beta, o.Ui, o.force.explicitForce, Vec3()};
+      o.reaction.beta = fluidSideBeta(o.force.beta, own[i].mass);
       if (exchanges_ > 0) {  // the first exchange has no interval behind it
+        // The mean drag the particle received, F_d = impulse / T, written as
+        // beta_T (U - v_s): at the fluid velocity U the particle saw, the fluid gets exactly -F_d.
         const AppliedDrag& a = applied[i];
-        o.reaction.beta = a.betaEff;
+        o.reaction.beta = fluidSideBeta(a.beta, own[i].mass);
         o.reaction.explicitForce = a.explicitForce;
         o.reactionU = a.U;
-        if (a.betaEff > 0) o.reactionV = a.U - (1.0 / (a.betaEff * exchangeInterval_)) * a.impulse;
+        if (o.reaction.beta > 0)
+          o.reactionV = a.U - (1.0 / (o.reaction.beta * exchangeInterval_)) * a.impulse;
       }
     } else {
       forces[i] = o.force.total(o.Ui, own[i].v);

@@ -4,8 +4,10 @@
 //                          patches bottom, backWall, sideWalls (3-D walls) | sideFront/sideBack
 //                          (3-D periodic) | frontAndBack (2-D empty), outlet (x = channel
 //                          length), atmosphere (y = channel height)
-//   system/controlDict     endTime/writeInterval kept, the rest from system/cfdDict, plus the
-//                          liquidObservables function object (postProcessing/liquid/)
+//   system/controlDict.generated  everything but the case's own entries, from system/cfdDict,
+//                          plus the liquidObservables function object (postProcessing/liquid/);
+//                          system/controlDict (endTime, writeInterval: the user's) includes it
+//                          and is not rewritten (the include is added once if missing)
 //   system/fvSchemes, system/fvSolution, system/decomposeParDict (simple, ranks x 1 x 1)
 //   constant/transportProperties (kinematic values from the SI input), constant/g,
 //   constant/turbulenceProperties (laminar)

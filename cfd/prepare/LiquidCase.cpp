@@ -194,7 +194,7 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
   readNumerics(cfd, c.liquid, c.numerics, c.observables);
 
-  // controlDict is rewritten by mixflowPrepare; only these two entries are the user's.
+  // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not rewritten.
   const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
   c.endTime = control.scalar("endTime", Range::positive());
   c.writeInterval = control.scalar("writeInterval", Range::positive());

@@ -1,7 +1,7 @@
 // The fluid half of a dam-break scene, read from the same case directory as the DEM half:
 //   constant/sceneProperties  content, sample, channel (shared with mixflowDem), liquid { ... }
 //   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
-//   system/controlDict        endTime, writeInterval (read back; the file is then rewritten)
+//   system/controlDict        endTime, writeInterval (the user's; never rewritten)
 // Every entry is validated on reading (file, entry, allowed range); defaults are listed in
 // docs/parameters.md (liquid scenes). Units are SI as in physics.md section 2 (Pa, Pa s^n, kg/m3);
 // OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
