@@ -163,13 +163,15 @@ Dictionary Dictionary::parse(const std::string& text, const std::string& fileNam
   return d;
 }
 
-Dictionary Dictionary::readFile(const std::string& path) {
+std::string readTextFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open file (missing or unreadable)");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse(ss.str(), path);
+  return ss.str();
 }
+
+Dictionary Dictionary::readFile(const std::string& path) { return parse(readTextFile(path), path); }
 
 bool Dictionary::has(const std::string& key) const { return entries_.count(key) > 0; }
 

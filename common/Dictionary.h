@@ -19,6 +19,9 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The whole file as text; InputError naming the file if it cannot be opened.
+std::string readTextFile(const std::string& path);
+
 // Closed or open interval for a scalar entry; printed in error messages.
 struct Range {
   double lo;

@@ -9,9 +9,8 @@
 //   sourceDistribution  volume;     // volume: reaction spread like the particle's volume;
 //                                   // centre: all in the centre's cell
 //   voidfractionMin     0.05;       // eps_f floor; default: mixflowProperties' voidfractionMin
-//   logEvery            1;          // exchanges between lines of
-//   postProcessing/coupling/exchange.csv dragIntegration     implicit;   // implicit: drag updated
-//   at every DEM step (backward Euler);
+//   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
+//   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
 //                                   // held: the exchange's drag held over the interval
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)

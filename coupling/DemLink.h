@@ -32,7 +32,6 @@
 
 namespace LAMMPS_NS {
 class FixExternal;
-class Fix;
 }  // namespace LAMMPS_NS
 
 namespace mixflow::coupling {

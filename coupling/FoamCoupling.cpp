@@ -403,13 +403,13 @@ void FoamCoupling::checkFluid() const {
   }
 }
 
-// Implicit drag: the coefficient the fluid's step sees, beta_T = beta / (1 + beta T / m) (backward
-// Euler over the CFD step T). A fluid velocity change dU over the step carries the particle along
-// with impulse beta_T T dU <= m dU: in the rigid limit (beta T >> m) the fluid takes on the
-// particles' inertia, no more, whereas beta itself (up to 1e4 Pa s Stokes drag) would add an
-// inertia beta T that no particle has.
-double FoamCoupling::fluidSideBeta(double beta, double mass) const {
-  return beta / (1.0 + beta * exchangeInterval_ / mass);
+// Implicit drag: the fluid's step sees the coefficient beta_T = beta / (1 + beta T / m) (backward
+// Euler over the CFD step T); this returns beta_T / beta. A fluid velocity change dU over the step
+// carries the particle along with impulse beta_T T dU <= m dU: in the rigid limit (beta T >> m) the
+// fluid takes on the particles' inertia, no more, whereas beta itself (up to 1e4 Pa s Stokes drag)
+// would add an inertia beta T that no particle has.
+double FoamCoupling::fluidSideScale(double beta, double mass) const {
+  return 1.0 / (1.0 + beta * exchangeInterval_ / mass);
 }
 
 void FoamCoupling::evolve() {
@@ -579,8 +579,8 @@ void FoamCoupling::exchange() {
     double scale = 1.0;
     if (implicitDrag) {
       // The drag law's beta goes to the particle (DemLink integrates it at every DEM step); the
-      // model columns of the log show the fluid-side coefficient (see fluidSideBeta).
-      scale = fluidSideBeta(w.force.beta, w.p.mass) / std::max(w.force.beta, 1e-300);
+      // model columns of the log show the fluid-side coefficient (see fluidSideScale).
+      scale = fluidSideScale(w.force.beta, w.p.mass);
     } else {
       // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
       // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
@@ -666,12 +666,12 @@ void FoamCoupling::exchange() {
     o.reactionV = own[i].v;
     if (implicitDrag) {
       next[i] = AppliedDrag{o.force.beta, o.Ui, o.force.explicitForce, Vec3()};
-      o.reaction.beta = fluidSideBeta(o.force.beta, own[i].mass);
+      o.reaction.beta = o.force.beta * fluidSideScale(o.force.beta, own[i].mass);
       if (exchanges_ > 0) {  // the first exchange has no interval behind it
         // The mean drag the particle received, F_d = impulse / T, written as
         // beta_T (U - v_s): at the fluid velocity U the particle saw, the fluid gets exactly -F_d.
         const AppliedDrag& a = applied[i];
-        o.reaction.beta = fluidSideBeta(a.beta, own[i].mass);
+        o.reaction.beta = a.beta * fluidSideScale(a.beta, own[i].mass);
         o.reaction.explicitForce = a.explicitForce;
         o.reactionU = a.U;
         if (o.reaction.beta > 0)

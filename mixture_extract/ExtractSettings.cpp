@@ -55,13 +55,8 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
         dictFile +
         ": cannot open file (missing or unreadable); mixflowExtract needs the averaging "
         "grid and the time windows from it (example in mixture_extract/README.md)");
-  {
-    std::ifstream in(dictFile);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    s.dictText = ss.str();
-  }
-  const Dictionary d = Dictionary::readFile(dictFile);
+  s.dictText = readTextFile(dictFile);
+  const Dictionary d = Dictionary::parse(s.dictText, dictFile);
   d.allowOnly({"grid", "windows", "thresholds", "pressureConvention", "liquidDensity", "viscosity",
                "fluid", "particles", "timeTolerance", "regions", "output"});
 

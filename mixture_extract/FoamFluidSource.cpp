@@ -114,18 +114,11 @@ class FoamFieldParser {
   size_t p_ = 0;
 };
 
-std::string slurpText(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw InputError(p.string() + ": cannot open file (missing or unreadable)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Cell values of one field, expanded to n cells (n < 0: take the length from the file).
 std::vector<double> readField(const fs::path& file, int ncomp, long& n) {
   long len = 0;
-  std::vector<double> v = FoamFieldParser(slurpText(file), file.string()).internalField(ncomp, len);
+  std::vector<double> v =
+      FoamFieldParser(readTextFile(file.string()), file.string()).internalField(ncomp, len);
   if (len < 0) {
     if (n < 0)
       throw InputError(file.string() +

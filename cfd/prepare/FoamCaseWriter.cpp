@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "Dictionary.h"
+
 namespace mixflow::cfd {
 
 namespace fs = std::filesystem;
@@ -52,10 +54,7 @@ void writeFile(const LiquidCase& c, const std::string& rel, const std::string& c
 // reduced to the two entries it was generated from.
 void includeGeneratedControl(const LiquidCase& c) {
   const fs::path path = fs::path(c.caseDir) / "system/controlDict";
-  std::ifstream in(path);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  std::string text = buf.str();
+  std::string text = readTextFile(path.string());
   if (text.find(kGeneratedControl) != std::string::npos) return;
   const std::string include = std::string("#include \"") + kGeneratedControl +
                               "\"   // written by mixflowPrepare; the entries below win\n";
