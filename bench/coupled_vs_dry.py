@@ -9,6 +9,7 @@ The scene is cases/W+P-quick with the Herschel-Bulkley liquid of case HB (813 gr
 settle the same sample (same seed); the settling is timed separately and left out of both.
 
 usage: coupled_vs_dry.py [--end 1.0] [--exchange-every 25,100] [--drag-integration implicit|held]
+                         [--drag-fluid-response none|share] [--liquid HB|W|B]
                          [--json OUT] [--bin build/bin]
 With several exchange intervals each coupled run is compared with the same dry twin, and the
 fronts and particle kinetic energy at half time and at the end are reported with their change
@@ -84,6 +85,10 @@ def main():
                     "the case's couplingProperties)")
     ap.add_argument("--drag-integration", choices=("implicit", "held"),
                     help="couplingProperties dragIntegration (default: the case's)")
+    ap.add_argument("--liquid", default="HB", choices=("HB", "W", "B"),
+                    help="the liquid of this case in cases/ (default HB: the issue's HB&P)")
+    ap.add_argument("--drag-fluid-response", choices=("none", "share"),
+                    help="couplingProperties dragFluidResponse (default: the case's)")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="mixflow-bench-cpl-")
     env_path = a.bin + os.pathsep + os.environ["PATH"]
@@ -91,20 +96,22 @@ def main():
     os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
     os.environ["MIXFLOW_ROOT"] = ROOT
 
-    # The coupled scene: W+P-quick with case HB's liquid.
-    cpl = os.path.join(work, "HB+P-quick")
+    # The coupled scene: W+P-quick with case HB's liquid (or --liquid's).
+    cpl = os.path.join(work, f"{a.liquid}+P-quick")
     shutil.copytree(os.path.join(ROOT, "cases", "W+P-quick"), cpl,
                     ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*", "0",
                                                   "processor*", "[0-9]*"))
     sp = os.path.join(cpl, "constant", "sceneProperties")
     text = open(sp).read()
-    hb = open(os.path.join(ROOT, "cases", "HB", "constant", "sceneProperties")).read()
+    hb = open(os.path.join(ROOT, "cases", a.liquid, "constant", "sceneProperties")).read()
     text = text[:text.index("liquid   //")] + hb[hb.index("liquid   //"):]
     open(sp, "w").write(text)
     set_entry(os.path.join(cpl, "system", "controlDict"), "endTime", repr(a.end))
     cp = os.path.join(cpl, "constant", "couplingProperties")
     if a.drag_integration:
         set_entry(cp, "dragIntegration", a.drag_integration)
+    if a.drag_fluid_response:
+        set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
     props = suite.read_dict(cp)
     everies = [int(n) for n in a.exchange_every.split(",")] if a.exchange_every else \
         [int(props["exchangeEvery"])]
@@ -123,7 +130,7 @@ def main():
     c_dry = c_dry_all - c_settle  # the same settling (same seed, same commands)
     runs = []
     for n in everies:
-        case = os.path.join(work, f"HB+P-quick-every{n}")
+        case = os.path.join(work, f"{a.liquid}+P-quick-every{n}")
         shutil.copytree(cpl, case)  # the settled sample included
         set_entry(os.path.join(case, "constant", "couplingProperties"), "exchangeEvery", str(n))
         timed([mf("mixflowPrepare"), "-case", case], case)
@@ -146,8 +153,9 @@ def main():
         r["change_vs_every%d" % runs[0]["exchange_every"]] = {
             k: v - base[k] for k, v in r["observables"].items()}
     res = {
-        "scene": "W+P-quick geometry with case HB's liquid (813 grains, 2-D fluid 0.06 m)",
+        "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (813 grains, 2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
+        "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "simulated_s": a.end, "particles": runs[0]["particles"],
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry, "target_ratio": 1.3,
         "runs": runs,

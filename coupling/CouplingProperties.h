@@ -12,6 +12,8 @@
 //   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
 //   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
 //                                   // held: the exchange's drag held over the interval
+//   dragFluidResponse   none;       // implicit only: none | share (the fluid velocity the drag
+//                                   // sees within an interval; see below)
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
 //   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B
@@ -40,6 +42,15 @@ struct CouplingProperties {
   // with the particle's velocity at every DEM step (backward Euler, stable for any beta; see
   // DemLink.h); held: the whole force of the exchange is held over the interval.
   std::string dragIntegration = "implicit";
+  // implicit only. none: the drag sees the fluid velocity U of the exchange over the whole
+  // interval, and the fluid step has the semi-implicit coefficient beta / (1 + beta T / m).
+  // share (experimental): the drag acts on the particle's share of its cell's fluid, m_f = rho_f
+  // V_p eps_f / (1 - eps_f), whose velocity U + a tau - J / m_f follows the fluid's own
+  // acceleration a (last step's, the particles' drag removed) and responds to the drag impulse J
+  // given so far (backward Euler for the pair); the fluid step receives exactly -J / T,
+  // explicitly. Meant for liquids whose relaxation time m_f / beta is shorter than T (viscous
+  // liquids); coupling/README.md, "Drag integration", has what it changes and what it does not.
+  std::string dragFluidResponse = "none";
   // held only: the drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the
   // exchange interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
   double dragRelaxationLimit = 0.5;

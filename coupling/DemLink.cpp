@@ -19,8 +19,18 @@ namespace mixflow::coupling {
 namespace {
 const char* kFixId = "mixflowFluidForce";
 const char* kStateId = "mixflowDragState";
-// Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3).
-enum State { kBeta = 0, kU = 1, kFexp = 4, kImpulse = 7, kLastDrag = 10, kStateSize = 13 };
+// Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3), 1 / m_f,
+// the fluid share's own acceleration(3).
+enum State {
+  kBeta = 0,
+  kU = 1,
+  kFexp = 4,
+  kImpulse = 7,
+  kLastDrag = 10,
+  kInvFluidMass = 13,
+  kAccel = 14,
+  kStateSize = 17
+};
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
                           double**, double** fexternal) {
@@ -68,13 +78,18 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   const double dt = lmp->update->dt;
   const bool repeat = step == lastCallStep_;
   lastCallStep_ = step;
+  const double tau = static_cast<double>(step - intervalStart_) * dt;  // end of this step
   for (int i = 0; i < nlocal; ++i) {
     double* si = s[i];
     const double dtm = dt / a->rmass[i];
-    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * dtm);
+    const double invMf = si[kInvFluidMass];
+    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * (dtm + dt * invMf));
     for (int k = 0; k < 3; ++k) {
       const double fexp = si[kFexp + k];
-      const double drag = betaEff * (si[kU + k] - a->v[i][k] - dtm * (a->f[i][k] + fexp));
+      // The fluid share's velocity before this step's drag (a repeated step's old drag undone).
+      const double impulse = si[kImpulse + k] - (repeat ? dt * si[kLastDrag + k] : 0.0);
+      const double Uf = si[kU + k] + tau * si[kAccel + k] - invMf * impulse;
+      const double drag = betaEff * (Uf - a->v[i][k] - dtm * (a->f[i][k] + fexp));
       si[kImpulse + k] += repeat ? 0.5 * dt * (drag - si[kLastDrag + k]) : dt * drag;
       si[kLastDrag + k] = drag;
       fexternal[i][k] = drag + fexp;
@@ -94,6 +109,8 @@ void DemLink::pullApplied(std::vector<AppliedDrag>& applied) const {
     applied[i].U = Vec3(si[kU], si[kU + 1], si[kU + 2]);
     applied[i].explicitForce = Vec3(si[kFexp], si[kFexp + 1], si[kFexp + 2]);
     applied[i].impulse = Vec3(si[kImpulse], si[kImpulse + 1], si[kImpulse + 2]);
+    applied[i].invFluidMass = si[kInvFluidMass];
+    applied[i].fluidAcceleration = Vec3(si[kAccel], si[kAccel + 1], si[kAccel + 2]);
   }
 }
 
@@ -104,13 +121,16 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
   const int n = session_.lammps()->atom->nlocal;
   if (static_cast<int>(next.size()) != n)
     throw std::runtime_error("coupling: force count differs from the local particle count");
+  intervalStart_ = session_.step();
   for (int i = 0; i < n; ++i) {
     double* si = s[i];
     si[kBeta] = next[i].beta;
+    si[kInvFluidMass] = next[i].invFluidMass;
     for (int k = 0; k < 3; ++k) {
       si[kU + k] = next[i].U[k];
       si[kFexp + k] = next[i].explicitForce[k];
       si[kImpulse + k] = 0.0;
+      si[kAccel + k] = next[i].fluidAcceleration[k];
     }
   }
 }

@@ -13,6 +13,11 @@
 //             beta dt / m): backward Euler for the drag in LIGGGHTS' velocity-Verlet half-step
 //             update, stable for any beta, with the exact terminal slip f_other / beta. It adds
 //             up the drag impulse it applied, which the next exchange returns to the fluid.
+//             With a fluid share m_f (AppliedDrag::invFluidMass) the fluid velocity seen is
+//             U - J / m_f (J the impulse so far) and backward Euler covers the pair:
+//             F_d = beta (U - J/m_f - v - dt (f_other + F_explicit) / m) / (1 + beta dt (1/m +
+//             1/m_f)), so particle and fluid share relax to their common velocity within the
+//             interval, as they would if the fluid were solved alongside.
 //             f_other is the force LIGGGHTS has summed when this fix's post_force runs (pair,
 //             gravity, walls: fixes defined before it), so this fix must be the last force fix.
 //             Particles must be integrated by LIGGGHTS (a fixed bed without an integrator
@@ -42,6 +47,12 @@ struct AppliedDrag {
   Vec3 U;              // fluid velocity held over the interval [m/s]
   Vec3 explicitForce;  // held explicit force [N]
   Vec3 impulse;        // drag impulse applied over the interval [N s]
+  // 1 / m_f of the particle's share of its cell's fluid, whose velocity U - impulse / m_f the
+  // drag sees (dragFluidResponse share); 0: the fluid velocity is held at U.
+  double invFluidMass = 0;
+  // The share's acceleration by the fluid's own forces (the last fluid step's), so that its
+  // velocity is U + a tau - impulse / m_f at tau into the interval.
+  Vec3 fluidAcceleration;
 };
 
 class DemLink {
@@ -80,6 +91,7 @@ class DemLink {
   DragIntegration mode_;
   long lastGlobalCount_ = -1;
   std::int64_t lastCallStep_ = -1;
+  std::int64_t intervalStart_ = 0;  // DEM step of the last pushImplicit
 };
 
 }  // namespace mixflow::coupling

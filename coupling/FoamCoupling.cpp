@@ -412,6 +412,29 @@ double FoamCoupling::fluidSideScale(double beta, double mass) const {
   return 1.0 / (1.0 + beta * exchangeInterval_ / mass);
 }
 
+// The fluid's acceleration over its last step by its own forces (pressure, viscous stress,
+// gravity, surface tension, advection), the particles' force removed: dU/dt - S / (eps rho),
+// S = Ksl (Us - U) + (explicit drag reaction) the particles' drag per volume in that step (their
+// buoyancy and viscous-force reactions are forces the fluid keeps within the interval). The drag's
+// fluid share follows it within the next DEM interval (DemLink), one step lagged.
+void FoamCoupling::updateFluidOwnAcceleration() {
+  const Foam::label n = mesh_.nCells();
+  fluidOwnAcceleration_.assign(n, Vec3());
+  const bool first = Ulast_.size() != static_cast<size_t>(n);
+  if (!first) {
+    const std::vector<Vec3>& lastDrag = assembly_->fDragSource();  // not yet reset: last step's
+    forAll(U_, c) {
+      const double mass = voidfraction_[c] * rho_[c];  // fluid mass per cell volume
+      const Vec3 S = Ksl_[c] * toVec(Us_[c] - U_[c]) + lastDrag[c];
+      if (mass > 0)
+        fluidOwnAcceleration_[c] =
+            (1.0 / exchangeInterval_) * (toVec(U_[c]) - Ulast_[c]) - (1.0 / mass) * S;
+    }
+  }
+  Ulast_.resize(n);
+  forAll(U_, c) { Ulast_[c] = toVec(U_[c]); }
+}
+
 void FoamCoupling::evolve() {
   dem_->run(props_->exchangeEvery);
   exchange();
@@ -421,10 +444,11 @@ namespace {
 
 // Record layouts of the three point-to-point rounds of an exchange (doubles).
 constexpr int kR1 = 10;      // owner index, tag, x(3), v(3), radius, mass
-constexpr int kR2Head = 11;  // owner index, work index, local inside volume, holds centre,
-                             // beta, F_explicit(3), U_i(3); then 3 per force model
-constexpr int kR3 = 14;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
-                             // holds centre, (spare)
+constexpr int kR2Head = 15;  // owner index, work index, local inside volume, holds centre,
+                             // beta, F_explicit(3), U_i(3), 1 / m_f, fluid's own acceleration(3);
+                             // then 3 per force model
+constexpr int kR3 = 16;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
+                             // holds centre, drag given explicitly(3) (part of F_explicit)
 
 // Does the sphere (centre x, radius r) touch the box [lo, hi]?
 bool sphereTouchesBox(const Vec3& x, double r, const double* lo, const double* hi) {
@@ -461,6 +485,8 @@ void FoamCoupling::exchange() {
   link_->pull(own, tags);
   const size_t nOwn = own.size();
   const bool implicitDrag = link_->mode() == DemLink::DragIntegration::implicit;
+  const bool fluidShare = implicitDrag && props_->dragFluidResponse == "share";
+  if (fluidShare) updateFluidOwnAcceleration();
   std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
   if (implicitDrag) link_->pullApplied(applied);
 
@@ -484,6 +510,8 @@ void FoamCoupling::exchange() {
     ParticleCells cells;
     ParticleForce force;
     Vec3 Ui;
+    double invFluidMass = 0;  // 1 / m_f of the particle's fluid share (dragFluidResponse share)
+    Vec3 fluidAcceleration;   // the share's acceleration by the fluid's own forces
     std::vector<Vec3> modelForces;
   };
   std::vector<Work> work;
@@ -570,6 +598,13 @@ void FoamCoupling::exchange() {
     if (divTauInt.valid()) f.divTau = toVec(divTauInt->interpolate(x, c));
     if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
     w.Ui = f.U;
+    if (fluidShare) {
+      // The particle's share of its cell's fluid: the cell's fluid mass rho eps V_c split over
+      // the particle volume (1 - eps) V_c in it. A cell without particle volume: no response.
+      const double solid = 1.0 - f.voidfraction;
+      if (solid > 0 && f.rho > 0) w.invFluidMass = solid / (f.rho * f.voidfraction * w.p.volume());
+      w.fluidAcceleration = fluidOwnAcceleration_[c];
+    }
     w.modelForces.resize(nModels);
     for (size_t m = 0; m < nModels; ++m) {
       fms[m] = forceModels_[m]->force(w.p, f);
@@ -607,9 +642,11 @@ void FoamCoupling::exchange() {
     const bool centre = w.cells.centreCell >= 0;
     if (inside <= 0 && !centre) continue;
     std::vector<double>& b = buf[w.owner];
-    b.insert(b.end(), {static_cast<double>(w.ownerIndex), static_cast<double>(k), inside,
-                       centre ? 1.0 : 0.0, w.force.beta, w.force.explicitForce.x,
-                       w.force.explicitForce.y, w.force.explicitForce.z, w.Ui.x, w.Ui.y, w.Ui.z});
+    b.insert(b.end(),
+             {static_cast<double>(w.ownerIndex), static_cast<double>(k), inside, centre ? 1.0 : 0.0,
+              w.force.beta, w.force.explicitForce.x, w.force.explicitForce.y,
+              w.force.explicitForce.z, w.Ui.x, w.Ui.y, w.Ui.z, w.invFluidMass,
+              w.fluidAcceleration.x, w.fluidAcceleration.y, w.fluidAcceleration.z});
     for (size_t m = 0; m < nModels; ++m) {
       const Vec3 F = centre ? w.modelForces[m] : Vec3();
       b.insert(b.end(), {F.x, F.y, F.z});
@@ -629,11 +666,14 @@ void FoamCoupling::exchange() {
     int host = -1;  // lowest rank holding the centre
     ParticleForce force;
     Vec3 Ui;
+    double invFluidMass = 0;
+    Vec3 fluidAcceleration;
     // What the fluid receives for this CFD step: the force at this exchange (held), or the mean
     // force the particle actually received over the DEM interval just run (implicit), written as
     // beta (U - v) + F_explicit with the velocity v that reproduces the drag impulse.
     ParticleForce reaction;
     Vec3 reactionU, reactionV;
+    Vec3 explicitDrag;  // the part of reaction.explicitForce that is drag
   };
   std::vector<Owned> owned(nOwn);
   modelTotals_.assign(3 * nModels, 0.0);
@@ -650,6 +690,8 @@ void FoamCoupling::exchange() {
         o.force.beta = r[4];
         o.force.explicitForce = Vec3(r[5], r[6], r[7]);
         o.Ui = Vec3(r[8], r[9], r[10]);
+        o.invFluidMass = r[11];
+        o.fluidAcceleration = Vec3(r[12], r[13], r[14]);
         for (size_t m = 0; m < 3 * nModels; ++m) modelTotals_[m] += r[kR2Head + m];
       }
     }
@@ -664,10 +706,20 @@ void FoamCoupling::exchange() {
     o.reaction = o.force;
     o.reactionU = o.Ui;
     o.reactionV = own[i].v;
+    Vec3& explicitDrag = o.explicitDrag;  // drag the fluid receives explicitly
     if (implicitDrag) {
-      next[i] = AppliedDrag{o.force.beta, o.Ui, o.force.explicitForce, Vec3()};
+      next[i] = AppliedDrag{o.force.beta, o.Ui,           o.force.explicitForce,
+                            Vec3(),       o.invFluidMass, o.fluidAcceleration};
       o.reaction.beta = o.force.beta * fluidSideScale(o.force.beta, own[i].mass);
-      if (exchanges_ > 0) {  // the first exchange has no interval behind it
+      if (exchanges_ > 0 && fluidShare) {
+        // The particle's drag already saw its fluid share respond (DemLink): the fluid step gets
+        // exactly the mean drag of the interval, explicitly; an implicit term would count the
+        // share's response twice.
+        const AppliedDrag& a = applied[i];
+        explicitDrag = (1.0 / exchangeInterval_) * a.impulse;
+        o.reaction = ParticleForce{0.0, a.explicitForce + explicitDrag};
+        o.reactionU = a.U;
+      } else if (exchanges_ > 0) {  // the first exchange has no interval behind it
         // The mean drag the particle received, F_d = impulse / T, written as
         // beta_T (U - v_s): at the fluid velocity U the particle saw, the fluid gets exactly -F_d.
         const AppliedDrag& a = applied[i];
@@ -682,7 +734,7 @@ void FoamCoupling::exchange() {
     }
     ParticleState p = own[i];
     p.v = o.reactionV;
-    assembly_->addParticleForce(p, o.reaction, o.reactionU);
+    assembly_->addParticleForce(p, o.reaction, o.reactionU, explicitDrag);
   }
   if (implicitDrag)
     link_->pushImplicit(next);
@@ -705,7 +757,8 @@ void FoamCoupling::exchange() {
       buf[part.rank].insert(
           buf[part.rank].end(),
           {static_cast<double>(part.workIndex), f.beta, f.explicitForce.x, f.explicitForce.y,
-           f.explicitForce.z, U.x, U.y, U.z, v.x, v.y, v.z, o.inside, isHost ? 1.0 : 0.0, 0.0});
+           f.explicitForce.z, U.x, U.y, U.z, v.x, v.y, v.z, o.inside, isHost ? 1.0 : 0.0,
+           o.explicitDrag.x, o.explicitDrag.y, o.explicitDrag.z});
     }
   }
   in = exchangeBuffers(buf, MPI_COMM_WORLD);
@@ -718,7 +771,8 @@ void FoamCoupling::exchange() {
       f.explicitForce = Vec3(r[2], r[3], r[4]);
       ParticleState p = w.p;
       p.v = Vec3(r[8], r[9], r[10]);
-      assembly_->depositReaction(p, w.cells, f, Vec3(r[5], r[6], r[7]), r[11], r[12] > 0.5, Ucell);
+      assembly_->depositReaction(p, w.cells, f, Vec3(r[5], r[6], r[7]), r[11], r[12] > 0.5, Ucell,
+                                 Vec3(r[13], r[14], r[15]));
     }
   assembly_->finishSources(Ucell);
 

@@ -21,6 +21,7 @@ void SourceAssembly::reset() {
   kslUs_.assign(n, Vec3());
   us_.assign(n, Vec3());
   fSource_.assign(n, Vec3());
+  fDrag_.assign(n, Vec3());
   totals_ = ExchangeTotals();
 }
 
@@ -66,22 +67,24 @@ void SourceAssembly::addSource(const ParticleState& p, const ParticleCells& cell
 }
 
 void SourceAssembly::addParticleForce(const ParticleState& p, const ParticleForce& force,
-                                      const Vec3& Ui) {
+                                      const Vec3& Ui, const Vec3& explicitDrag) {
   const Vec3 F = force.total(Ui, p.v);
   totals_.forceOnParticles += F;
   totals_.forceScale += mag(F);
-  totals_.dragOnParticles += force.beta * (Ui - p.v);
-  totals_.explicitOnParticles += force.explicitForce;
+  totals_.dragOnParticles += force.beta * (Ui - p.v) + explicitDrag;
+  totals_.explicitOnParticles += force.explicitForce - explicitDrag;
 }
 
 void SourceAssembly::depositReaction(const ParticleState& p, const ParticleCells& localCells,
                                      const ParticleForce& force, const Vec3& Ui, double insideTotal,
-                                     bool holdsCentre, const std::vector<Vec3>& Ucell) {
+                                     bool holdsCentre, const std::vector<Vec3>& Ucell,
+                                     const Vec3& explicitDrag) {
   auto deposit = [&](long c, double w) {
     const double s = w / volumes_[c];
     ksl_[c] += s * force.beta;
     kslUs_[c] += (s * force.beta) * p.v;
     fSource_[c] += s * (force.beta * (Ucell[c] - Ui) - force.explicitForce);
+    fDrag_[c] -= s * explicitDrag;
   };
   if (distribution_ == Distribution::centre || insideTotal <= 0) {
     if (holdsCentre && localCells.centreCell >= 0) deposit(localCells.centreCell, 1.0);

@@ -58,15 +58,20 @@ class SourceAssembly {
   // particle deposits the reaction in its cells, with weights V_ic / insideTotal (volume
   // distribution; insideTotal = the particle's volume inside the whole mesh) or, for the
   // centre distribution (or insideTotal = 0), all in the centre cell on the rank holding it.
-  void addParticleForce(const ParticleState& p, const ParticleForce& force, const Vec3& Ui);
+  // explicitDrag: the part of force.explicitForce that is drag (for the totals' split).
+  void addParticleForce(const ParticleState& p, const ParticleForce& force, const Vec3& Ui,
+                        const Vec3& explicitDrag = Vec3());
   void depositReaction(const ParticleState& p, const ParticleCells& localCells,
                        const ParticleForce& force, const Vec3& Ui, double insideTotal,
-                       bool holdsCentre, const std::vector<Vec3>& Ucell);
+                       bool holdsCentre, const std::vector<Vec3>& Ucell,
+                       const Vec3& explicitDrag = Vec3());
   void finishSources(const std::vector<Vec3>& Ucell);
 
   const std::vector<double>& Ksl() const { return ksl_; }
   const std::vector<Vec3>& Us() const { return us_; }
   const std::vector<Vec3>& fSource() const { return fSource_; }
+  // The part of fSource that is the reaction to drag given explicitly (explicitDrag above).
+  const std::vector<Vec3>& fDragSource() const { return fDrag_; }
   const ExchangeTotals& totals() const { return totals_; }
   Distribution distribution() const { return distribution_; }
 
@@ -75,7 +80,7 @@ class SourceAssembly {
   double voidfractionMin_;
   Distribution distribution_;
   std::vector<double> solid_, voidfraction_, ksl_;
-  std::vector<Vec3> kslUs_, us_, fSource_;
+  std::vector<Vec3> kslUs_, us_, fSource_, fDrag_;
   ExchangeTotals totals_;
 };
 

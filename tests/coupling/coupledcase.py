@@ -223,6 +223,16 @@ def add_parallel_args(ap):
     ap.add_argument("--reconstructpar", default="reconstructPar")
 
 
+def add_fluid_response_arg(ap):
+    ap.add_argument("--drag-fluid-response", default="none", choices=("none", "share"),
+                    help="couplingProperties dragFluidResponse (implicit drag)")
+
+
+def fluid_response_entry(a):
+    """The couplingProperties line for --drag-fluid-response."""
+    return f"dragFluidResponse {a.drag_fluid_response};\n"
+
+
 def read_exchange_log(case):
     """postProcessing/coupling/exchange.csv as a list of dicts of floats."""
     path = os.path.join(case, "postProcessing", "coupling", "exchange.csv")

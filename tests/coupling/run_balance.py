@@ -46,6 +46,7 @@ def main():
     ap.add_argument("--tol-force", type=float, default=1e-10)
     ap.add_argument("--tol-volume", type=float, default=1e-9)
     cc.add_parallel_args(ap)
+    cc.add_fluid_response_arg(ap)
     a = ap.parse_args()
 
     d, rho_p, rho_l = 2e-3, 2500.0, 1000.0
@@ -76,7 +77,7 @@ voidFractionModel {a.voidfraction};
 interpolation {a.interpolation};
 sourceDistribution {a.distribution};
 voidfractionMin 0.9;
-"""
+""" + cc.fluid_response_entry(a)
     case = os.path.join(a.workdir, "case")
     cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=1e-6,
                   liquid_height=0.04, open_top=True)

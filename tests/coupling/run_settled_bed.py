@@ -43,6 +43,7 @@ def main():
     ap.add_argument("--expect-fail", action="store_true",
                     help="negative control: pass only if the floor or pressure check fails")
     cc.add_parallel_args(ap)
+    cc.add_fluid_response_arg(ap)
     a = ap.parse_args()
 
     d, rho_p, rho_l = 2e-3, 2500.0, 1000.0
@@ -69,7 +70,7 @@ fix integr all nve/sphere
 exchangeEvery {every};
 forceModels ({a.models});
 voidFractionModel divided;
-"""
+""" + cc.fluid_response_entry(a)
     case = os.path.join(a.workdir, "case")
     cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=1e-6,
                   liquid_height=0.045, open_top=True)

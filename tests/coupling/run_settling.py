@@ -51,6 +51,7 @@ def main():
     ap.add_argument("--min-stiffness", type=float, default=0.0,
                     help="require beta T / m >= this (T the exchange interval): a stiff case")
     cc.add_parallel_args(ap)
+    cc.add_fluid_response_arg(ap)
     a = ap.parse_args()
 
     ref = cc.read_reference(os.path.join(a.shared, "reference",
@@ -80,7 +81,7 @@ voidFractionModel {a.voidfraction};
 interpolation {a.interpolation};
 dragIntegration {integration};
 dragRelaxationLimit {a.relaxation_limit!r};
-"""
+""" + cc.fluid_response_entry(a)
         cc.write_case(case, box, a.end, every * a.dt_dem, dem, coupling, rho_l=rho_f,
                       nu_l=mu / rho_f)
         cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec,
