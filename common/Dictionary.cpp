@@ -25,11 +25,16 @@ bool Range::contains(double v) const {
   return aboveLo && belowHi;
 }
 
-static std::string num(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+std::string formatNumber(double v, int precision) {
   std::ostringstream s;
+  s.precision(precision);
   s << v;
   return s.str();
+}
+
+static std::string num(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return formatNumber(v, 6);  // the stream default
 }
 
 std::string Range::str() const {

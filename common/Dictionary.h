@@ -22,6 +22,9 @@ class InputError : public std::runtime_error {
 // The whole file as text; InputError naming the file if it cannot be opened.
 std::string readTextFile(const std::string& path);
 
+// v with `precision` significant digits (messages, CSV, JSON, state files, LIGGGHTS commands).
+std::string formatNumber(double v, int precision = 10);
+
 // Closed or open interval for a scalar entry; printed in error messages.
 struct Range {
   double lo;

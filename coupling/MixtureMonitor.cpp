@@ -43,7 +43,7 @@ void MixtureMonitor::afterStep() {
   rec_->indexSnapshots();
   if (rank_ == 0)
     progress_->update(rec_->time(), false,
-                      ", granular front " + dem::formatNumber(rep_.front, 4) + " m");
+                      ", granular front " + mixflow::formatNumber(rep_.front, 4) + " m");
 }
 
 void MixtureMonitor::finish() {
@@ -56,7 +56,7 @@ void MixtureMonitor::finish() {
   rec_->indexSnapshots();
   rec_->writeSummary(
       settled_, rep_,
-      "  \"liquid_density_kg_m3\": " + dem::formatNumber(scene_.fluidDensity) + ",\n");
+      "  \"liquid_density_kg_m3\": " + mixflow::formatNumber(scene_.fluidDensity) + ",\n");
   if (rank_ == 0) {
     progress_->update(rec_->time(), true);
     // The DEM share of the wall time (bench/coupled_vs_dry.py splits DEM, coupling and fluid).

@@ -2,19 +2,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
-#include <sstream>
 #include <stdexcept>
+
+#include "Dictionary.h"
 
 namespace mixflow::dem {
 
 namespace fs = std::filesystem;
-
-std::string formatNumber(double v, int precision) {
-  std::ostringstream s;
-  s << std::setprecision(precision) << v;
-  return s.str();
-}
 
 namespace {
 constexpr double kG = 9.81;

@@ -36,9 +36,6 @@ struct CollapseReport {
   long remaining = 0, deletedOutlet = 0, deletedTop = 0, lost = 0;
 };
 
-// v with `precision` significant digits (CSV, JSON and state files).
-std::string formatNumber(double v, int precision = 10);
-
 // Particle centres (x, y, z) of all ranks, on rank 0 (empty elsewhere).
 std::vector<std::array<double, 3>> gatherCentres(const ParticleView& p, MPI_Comm comm);
 

@@ -1,17 +1,13 @@
 #include "LiggghtsCommands.h"
 
 #include <algorithm>
-#include <sstream>
+
+#include "Dictionary.h"
 
 namespace mixflow::dem {
 
 namespace {
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return formatNumber(v, 12); }
 }  // namespace
 
 std::string contactModel(const ParticleMaterial& p) {

@@ -13,12 +13,7 @@ namespace mixflow::dem {
 namespace {
 constexpr double kGravity = 9.81;
 
-std::string shortNum(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
+std::string shortNum(double v) { return formatNumber(v, 4); }
 
 void readSample(const Dictionary& d, SampleSpec& s) {
   d.allowOnly({"length", "height", "width", "solidFraction"});

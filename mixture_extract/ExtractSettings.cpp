@@ -13,11 +13,7 @@ namespace mixflow::mx {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << std::setprecision(6) << v;
-  return s.str();
-}
+std::string num(double v) { return formatNumber(v, 6); }
 
 std::string ordinal(size_t k) {
   const size_t n = k + 1;

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -30,11 +29,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << std::setprecision(8) << v;
-  return s.str();
-}
+std::string num(double v) { return formatNumber(v, 8); }
 
 enum class WindowState { Present, Ready, Deferred, Skipped };
 

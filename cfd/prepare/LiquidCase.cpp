@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <sstream>
 #include <vector>
 
 #include "Dictionary.h"
@@ -12,12 +11,7 @@ namespace mixflow::cfd {
 
 namespace {
 
-std::string shortNum(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string shortNum(double v) { return formatNumber(v, 6); }
 
 std::string join(const std::vector<std::string>& w) {
   std::string s;
@@ -194,7 +188,8 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
   readNumerics(cfd, c.liquid, c.numerics, c.observables);
 
-  // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not rewritten.
+  // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not
+  // rewritten.
   const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
   c.endTime = control.scalar("endTime", Range::positive());
   c.writeInterval = control.scalar("writeInterval", Range::positive());

@@ -33,15 +33,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iomanip>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "ContactTimes.h"
+#include "Dictionary.h"
 #include "LiggghtsCommands.h"
 #include "LiggghtsSession.h"
 #include "Scene.h"
@@ -55,17 +54,9 @@ constexpr double kGravity = 9.81;  // as in the scene setup (fix gravity 9.81)
 
 int gRank = 0;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
-}
+std::string num(double v) { return mixflow::formatNumber(v, 17); }
 
-std::string shortNum(double v, int precision = 6) {
-  std::ostringstream s;
-  s << std::setprecision(precision) << v;
-  return s.str();
-}
+std::string shortNum(double v, int precision = 6) { return mixflow::formatNumber(v, precision); }
 
 // ---------------------------------------------------------------------------------------------
 // Reference CSV files: '#' comment lines, one header line, comma-separated rows ("..." quoting).
