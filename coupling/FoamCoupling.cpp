@@ -706,7 +706,6 @@ void FoamCoupling::exchange() {
     o.reaction = o.force;
     o.reactionU = o.Ui;
     o.reactionV = own[i].v;
-    Vec3& explicitDrag = o.explicitDrag;  // drag the fluid receives explicitly
     if (implicitDrag) {
       next[i] = AppliedDrag{o.force.beta, o.Ui,           o.force.explicitForce,
                             Vec3(),       o.invFluidMass, o.fluidAcceleration};
@@ -716,8 +715,8 @@ void FoamCoupling::exchange() {
         // exactly the mean drag of the interval, explicitly; an implicit term would count the
         // share's response twice.
         const AppliedDrag& a = applied[i];
-        explicitDrag = (1.0 / exchangeInterval_) * a.impulse;
-        o.reaction = ParticleForce{0.0, a.explicitForce + explicitDrag};
+        o.explicitDrag = (1.0 / exchangeInterval_) * a.impulse;
+        o.reaction = ParticleForce{0.0, a.explicitForce + o.explicitDrag};
         o.reactionU = a.U;
       } else if (exchanges_ > 0) {  // the first exchange has no interval behind it
         // The mean drag the particle received, F_d = impulse / T, written as
@@ -734,7 +733,7 @@ void FoamCoupling::exchange() {
     }
     ParticleState p = own[i];
     p.v = o.reactionV;
-    assembly_->addParticleForce(p, o.reaction, o.reactionU, explicitDrag);
+    assembly_->addParticleForce(p, o.reaction, o.reactionU, o.explicitDrag);
   }
   if (implicitDrag)
     link_->pushImplicit(next);
