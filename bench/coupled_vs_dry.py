@@ -89,6 +89,14 @@ def main():
                     help="the liquid of this case in cases/ (default HB: the issue's HB&P)")
     ap.add_argument("--drag-fluid-response", choices=("none", "share"),
                     help="couplingProperties dragFluidResponse (default: the case's)")
+    ap.add_argument("--rayleigh-fraction", type=float,
+                    help="demDict rayleighFraction, the DEM step in Rayleigh times, for the "
+                    "settling, the dry twin and the coupled runs (default: the case's, 0.1)")
+    ap.add_argument("--young-modulus-factor", type=float,
+                    help="demDict youngModulusFactor (default: the case's, 1e-3); 1 is the paper's "
+                    "70/700 GPa")
+    ap.add_argument("--dem-step", type=float,
+                    help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="mixflow-bench-cpl-")
     env_path = a.bin + os.pathsep + os.environ["PATH"]
@@ -112,6 +120,11 @@ def main():
         set_entry(cp, "dragIntegration", a.drag_integration)
     if a.drag_fluid_response:
         set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
+    dem_dict = os.path.join(cpl, "system", "demDict")
+    for entry, value in (("rayleighFraction", a.rayleigh_fraction),
+                         ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
+        if value:
+            set_entry(dem_dict, entry, repr(value))
     props = suite.read_dict(cp)
     everies = [int(n) for n in a.exchange_every.split(",")] if a.exchange_every else \
         [int(props["exchangeEvery"])]
@@ -142,8 +155,11 @@ def main():
             rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
         coupling_s = sum(float(r["seconds"]) for r in rows)
         summ = json.load(open(os.path.join(case, "postProcessing", "dem", "summary.json")))
+        with open(os.path.join(case, "system", "in.liggghts")) as f:
+            dem_step = float(re.search(r"^timestep\s+(\S+)", f.read(), re.M).group(1))
         runs.append({
-            "exchange_every": n, "coupled_cpu_s": c_cpl, "ratio_coupled_over_dry": c_cpl / c_dry,
+            "exchange_every": n, "dem_step_s": dem_step, "exchange_interval_s": n * dem_step,
+            "coupled_cpu_s": c_cpl, "ratio_coupled_over_dry": c_cpl / c_dry,
             "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
                 "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
                 "fluid_and_rest": w_cpl - dem_s - coupling_s},
@@ -156,6 +172,8 @@ def main():
         "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (813 grains, 2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
+        "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
+                     if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": runs[0]["particles"],
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry, "target_ratio": 1.3,
         "runs": runs,

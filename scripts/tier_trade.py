@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""The speed/accuracy trade of one scene across fidelity tiers (issue 6; docs/suite.md).
+
+usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/reference]
+                     [--paper-cost results/li_zhao_2018/cost_paper.json]
+                     [--paper-physics results/bench/coupled_vs_dry_paper_modulus.json]
+                     [--out results/li_zhao_2018]
+
+For each tier whose run of the scene finished (scripts/suite.py writes WORK/<scene>/.done): the
+wall time, ranks and core-seconds per simulated second, and the observables of the report at
+t = 0.5, 1.0 and 1.5 s (fronts, the grains' released potential energy and kinetic energy per
+metre of width, the liquid's E_fc, the back-wall depth / H, the subcritical time). Then how far
+each observable moves from the cheapest tier to each dearer one. The paper tier cannot run here
+(26 core-hours per mixture): its row is the measured cost per simulated second and the
+extrapolated core-hours (scripts/suite.py --tier paper), and, if given, the bench run with the
+paper's modulus, DEM step and exchange interval on the quick bench geometry
+(bench/coupled_vs_dry.py --young-modulus-factor 1 --dem-step 5e-7 --exchange-every 100).
+Writes OUT/tier_trade.json and OUT/tier_trade.md.
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import report  # noqa: E402  (Scene and the report's derived numbers)
+from liquid_results import at  # noqa: E402
+
+TIMES = (0.5, 1.0, 1.5)
+
+
+def read(rows, key, label):
+    """rows[key] at t = label, or at the last row if the series ends within 0.01 s before it."""
+    return at(rows, key, min(label, rows[-1]["time_s"]))
+
+
+def observables(s):
+    """Observables of one finished scene at TIMES (None where the run does not reach t)."""
+    out = {}
+    pe = report.particle_energies(s)
+    efc = report.e_fc(s)
+    t_end = s.t_end()
+    for label in TIMES:
+        # A run that ended within 0.01 s of a time (endTime 1.5 s stops at 1.4994 s) counts as
+        # reaching it, read at its last row.
+        if t_end is None or t_end < label - 0.01:
+            continue
+        t = min(label, t_end)
+        o = {}
+        if s.liquid:
+            o["liquid_front_m"] = read(s.liquid, "front_bed_m", t)
+            o["back_wall_depth_over_H"] = report.back_wall(s, t)
+        if efc is not None:
+            o["E_fc"] = float(np.interp(t, *efc))
+        if s.dem:
+            o["granular_front_m"] = read(s.dem, "front_x_m", t)
+        if pe is not None:
+            tt, ek, ep = pe
+            o["particle_pe_released_J_per_m"] = float(ep[0] - np.interp(t, tt, ep))
+            o["particle_ke_J_per_m"] = float(np.interp(t, tt, ek))
+        out[f"{label:g}s"] = o
+    t0, sub = report.subcritical(s)
+    out["arrival_at_1.38m_s"] = t0
+    out["subcritical_after_arrival_s"] = sub
+    return out
+
+
+def tier_row(work, scene):
+    s = report.Scene(work, scene)
+    if not s.done:
+        return None
+    with open(os.path.join(s.dir, ".done")) as f:
+        done = json.load(f)
+    sim = done.get("simulated_s") or s.t_end()
+    return {"work": work, "tier": s.tier, "width_m": s.width, "wall_s": done["wall_s"],
+            "ranks": done["ranks"], "simulated_s": sim,
+            "core_s_per_simulated_s": done["wall_s"] * done["ranks"] / sim,
+            "observables": observables(s)}
+
+
+def changes(base, other):
+    """other - base for every observable both have (same time key)."""
+    d = {}
+    for tk, ob in other["observables"].items():
+        if not isinstance(ob, dict) or tk not in base["observables"]:
+            continue
+        for k, v in ob.items():
+            b = base["observables"][tk].get(k)
+            if v is not None and b is not None:
+                d.setdefault(tk, {})[k] = v - b
+    for k in ("subcritical_after_arrival_s", "arrival_at_1.38m_s"):
+        a, b = other["observables"].get(k), base["observables"].get(k)
+        d[k] = None if a is None or b is None else a - b
+    return d
+
+
+def fmt(v, nd=3):
+    return "-" if v is None else (f"{v:.{nd}g}" if isinstance(v, float) else str(v))
+
+
+def markdown(res):
+    tiers = [t for t in res["tiers"] if res["tiers"][t]]
+    lines = [f"# {res['scene']} across fidelity tiers", "",
+             f"Made by `{res['command']}`.", "",
+             "| tier | ranks | wall (s) | simulated (s) | core-s per simulated s |",
+             "|---|---|---|---|---|"]
+    for t in tiers:
+        r = res["tiers"][t]
+        lines.append(f"| {t} | {r['ranks']} | {r['wall_s']:.0f} | {r['simulated_s']:.3g} | "
+                     f"{r['core_s_per_simulated_s']:.3g} |")
+    p = res.get("paper")
+    if p:
+        lines.append(f"| paper (not run: estimate) | {p['measured_ranks']} | - | "
+                     f"{p['end_time_s']:g} | {p['core_s_per_simulated_s']:.3g} "
+                     f"({p['core_hours']:.1f} core-h for the scene) |")
+    lines += ["", "| observable | t | " + " | ".join(tiers) + " | change |",
+              "|---|---|" + "---|" * (len(tiers) + 1)]
+    base = tiers[0]
+    for tk in [f"{t:g}s" for t in TIMES]:
+        keys = sorted({k for t in tiers for k in res["tiers"][t]["observables"].get(tk, {})})
+        for k in keys:
+            vals = [res["tiers"][t]["observables"].get(tk, {}).get(k) for t in tiers]
+            ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(tk, {}).get(k) for t in tiers[1:]]
+            lines.append(f"| {k} | {tk} | " + " | ".join(fmt(v) for v in vals) + " | " +
+                         ", ".join(fmt(c) for c in ch) + " |")
+    for k in ("arrival_at_1.38m_s", "subcritical_after_arrival_s"):
+        vals = [res["tiers"][t]["observables"].get(k) for t in tiers]
+        lines.append(f"| {k} | - | " + " | ".join(fmt(v) for v in vals) + " | |")
+    pp = res.get("paper_physics_on_bench_geometry")
+    if pp:
+        lines += ["", "Paper modulus, DEM step and exchange interval on the bench's quick geometry "
+                  f"(`{pp['command']}`): see the JSON; it answers what the softening and the "
+                  "interval do, not what the full-width scene gives."]
+    lines += ["", "Changes are dearer tier minus the first tier listed. Energies per metre of width "
+              "(the tiers' slices differ in width)."]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", default="HB+P")
+    ap.add_argument("--tiers", default="quick=runs/quick,reference=runs/reference")
+    ap.add_argument("--paper-cost", default="results/li_zhao_2018/cost_paper.json")
+    ap.add_argument("--paper-physics", help="a bench/coupled_vs_dry.py JSON run at the paper's "
+                    "modulus and steps")
+    ap.add_argument("--out", default="results/li_zhao_2018")
+    a = ap.parse_args(argv)
+    res = {"scene": a.scene, "tiers": {}, "changes": {},
+           "command": " ".join(["python3 scripts/tier_trade.py"] + (argv or sys.argv[1:]))}
+    for spec in a.tiers.split(","):
+        name, work = spec.split("=")
+        res["tiers"][name] = tier_row(work, a.scene)
+    done = [t for t in res["tiers"] if res["tiers"][t]]
+    if not done:
+        sys.exit(f"tier_trade.py: no finished {a.scene} in {a.tiers}")
+    for t in done[1:]:
+        res["changes"][f"{t}_minus_{done[0]}"] = changes(res["tiers"][done[0]], res["tiers"][t])
+    if a.paper_cost and os.path.isfile(a.paper_cost):
+        with open(a.paper_cost) as f:
+            cost = json.load(f)
+        sc = cost["scenes"].get(a.scene)
+        content = sc["content"] if sc else None
+        m = cost["measured"].get(content) if content else None
+        if sc and m:
+            res["paper"] = {"source": a.paper_cost, "core_hours": sc["core_hours"],
+                            "end_time_s": sc["end_time_s"], "measured_scene": m["scene"],
+                            "measured_ranks": m["ranks"],
+                            "core_s_per_simulated_s": sc["core_hours"] * 3600 / sc["simulated_s"]}
+    if a.paper_physics:
+        with open(a.paper_physics) as f:
+            res["paper_physics_on_bench_geometry"] = json.load(f)
+    os.makedirs(a.out, exist_ok=True)
+    with open(os.path.join(a.out, "tier_trade.json"), "w") as f:
+        json.dump(report.clean(res), f, indent=2)
+        f.write("\n")
+    with open(os.path.join(a.out, "tier_trade.md"), "w") as f:
+        f.write(markdown(res))
+    print(markdown(res))
+
+
+if __name__ == "__main__":
+    main()
