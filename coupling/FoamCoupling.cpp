@@ -148,11 +148,13 @@ enum Total {
   kVz,  // sum of particle velocities
   kX,
   kY,
-  kZ,            // sum of particle positions
-  kRemote,       // particles whose fluid cell is on another rank than their DEM owner
-  kDragLimited,  // particles whose drag coefficient was limited (dragRelaxationLimit)
+  kZ,                    // sum of particle positions
+  kRemote,               // particles whose fluid cell is on another rank than their DEM owner
+  kDragLimited,          // particles whose drag coefficient was limited (dragRelaxationLimit)
+  kCounterflowUnstable,  // implicit drag: particles beyond the packed-bed stability bound
   kNumSums,
   kMinVoidfraction = kNumSums,
+  kCounterflowMax,  // implicit drag: max over particles of s (c - 1) / 2 (stable below 1)
   kNumTotals
 };
 
@@ -584,7 +586,7 @@ void FoamCoupling::exchange() {
     gradPInt = Foam::interpolation<Foam::vector>::New(scheme, tgradP());
   }
   const Foam::scalarField& vf = voidfraction_.primitiveField();
-  double limited = 0;
+  double limited = 0, counterflowUnstable = 0, counterflowMax = 0;
   std::vector<ParticleForce> fms(nModels);  // per-model forces of the particle at hand
   for (Work& w : work) {
     const long c = w.cells.centreCell;
@@ -616,6 +618,18 @@ void FoamCoupling::exchange() {
       // The drag law's beta goes to the particle (DemLink integrates it at every DEM step); the
       // model columns of the log show the fluid-side coefficient (see fluidSideScale).
       scale = fluidSideScale(w.force.beta, w.p.mass);
+      // In a packed bed the fluid step makes the pore fluid counterflow the grains (continuity:
+      // eps U = -(1 - eps) v in a column closed below), and the next interval's drag pulls the
+      // grain towards that lagged counterflow. With s = beta T / m and c = (1 - eps) / eps one
+      // exchange multiplies a compaction velocity by (1 - c s) / (1 + s): it grows, alternating
+      // in sign, once s (c - 1) > 2 (coupling/README.md, "Exchange interval").
+      const double eps = f.voidfraction;
+      if (eps > 0) {
+        const double bound =
+            w.force.beta * exchangeInterval_ / w.p.mass * ((1 - eps) / eps - 1) / 2;
+        counterflowMax = std::max(counterflowMax, bound);
+        if (bound > 1) counterflowUnstable += 1.0;
+      }
     } else {
       // The drag is held over the exchange interval T: a coefficient beta > m / T would push the
       // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
@@ -807,6 +821,7 @@ void FoamCoupling::exchange() {
   totals_[kForceScale] = t.forceScale;
   totals_[kRemote] = remote;
   totals_[kDragLimited] = limited;
+  totals_[kCounterflowUnstable] = counterflowUnstable;
   for (const auto& p : own)
     for (int k = 0; k < 3; ++k) {
       totals_[kVx + k] += p.v[k];
@@ -816,6 +831,7 @@ void FoamCoupling::exchange() {
   double minVf = t.minVoidfraction;
   MPI_Allreduce(MPI_IN_PLACE, &minVf, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
   totals_[kMinVoidfraction] = minVf;
+  MPI_Allreduce(&counterflowMax, &totals_[kCounterflowMax], 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   if (!modelTotals_.empty())
     MPI_Allreduce(MPI_IN_PLACE, modelTotals_.data(), static_cast<int>(modelTotals_.size()),
                   MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
@@ -838,7 +854,8 @@ void FoamCoupling::writeLogHeader() {
           " forceScale = sum |F_i|.\n";
   csv_ << "time,demStep,particles,particlesOutside,particleVolume,outsideVolume,clippedVolume,"
           "fluidSeenVolume,volumeError,Fp_x,Fp_y,Fp_z,Ff_x,Ff_y,Ff_z,forceScale,actionReaction,"
-          "minVoidfraction,meanVx,meanVy,meanVz,meanX,meanY,meanZ,remote,dragLimited";
+          "minVoidfraction,meanVx,meanVy,meanVz,meanX,meanY,meanZ,remote,dragLimited,"
+          "counterflowUnstable,counterflowMax";
   for (const auto& m : forceModels_)
     csv_ << "," << m->name() << "_x," << m->name() << "_y," << m->name() << "_z";
   csv_ << ",seconds\n";
@@ -859,7 +876,20 @@ void FoamCoupling::log(double seconds) {
              << " m3, action-reaction " << actionReaction << ", min voidfraction "
              << T[kMinVoidfraction] << ", fluid cell on another rank "
              << static_cast<long>(T[kRemote]) << ", drag limited "
-             << static_cast<long>(T[kDragLimited]) << ", " << seconds << " s" << Foam::endl;
+             << static_cast<long>(T[kDragLimited]) << ", counterflow unstable "
+             << static_cast<long>(T[kCounterflowUnstable]) << ", " << seconds << " s" << Foam::endl;
+  if (T[kCounterflowUnstable] > 0 && !warnedCounterflow_) {
+    warnedCounterflow_ = true;
+    const long n = props_->exchangeEvery;
+    Foam::Warning << "mixflowCoupled: at t = " << mesh_.time().value() << " s, "
+                  << static_cast<long>(T[kCounterflowUnstable])
+                  << " particles exceed the packed-bed stability bound of the implicit drag "
+                     "(beta T / m ((1 - eps) / eps - 1) / 2 up to "
+                  << T[kCounterflowMax] << " > 1): the exchange can oscillate and grow. "
+                  << "constant/couplingProperties exchangeEvery " << n << " -> at most "
+                  << std::max(1L, static_cast<long>(n / T[kCounterflowMax]))
+                  << " keeps them stable (coupling/README.md, \"Exchange interval\")" << Foam::endl;
+  }
 
   if (!csv_.is_open() || exchanges_ % props_->logEvery != 0) return;
   csv_ << std::setprecision(17) << mesh_.time().value() << "," << link_->step() << ","
@@ -870,7 +900,8 @@ void FoamCoupling::log(double seconds) {
   for (Total k : {kFpX, kFpY, kFpZ, kFfX, kFfY, kFfZ, kForceScale}) csv_ << "," << T[k];
   csv_ << "," << actionReaction << "," << T[kMinVoidfraction];
   for (Total k : {kVx, kVy, kVz, kX, kY, kZ}) csv_ << "," << T[k] / np;
-  csv_ << "," << static_cast<long>(T[kRemote]) << "," << static_cast<long>(T[kDragLimited]);
+  csv_ << "," << static_cast<long>(T[kRemote]) << "," << static_cast<long>(T[kDragLimited]) << ","
+       << static_cast<long>(T[kCounterflowUnstable]) << "," << T[kCounterflowMax];
   for (double v : modelTotals_) csv_ << "," << v;
   csv_ << "," << seconds << "\n" << std::flush;
 }
