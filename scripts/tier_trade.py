@@ -38,7 +38,7 @@ def read(rows, key, label):
 
 
 def observables(s):
-    """Observables of one finished scene at TIMES (None where the run does not reach t)."""
+    """Observables of one finished scene at TIMES (a time the run does not reach is left out)."""
     out = {}
     pe = report.particle_energies(s)
     efc = report.e_fc(s)
@@ -97,10 +97,6 @@ def changes(base, other):
     return d
 
 
-def fmt(v, nd=3):
-    return "-" if v is None else (f"{v:.{nd}g}" if isinstance(v, float) else str(v))
-
-
 def markdown(res):
     tiers = [t for t in res["tiers"] if res["tiers"][t]]
     lines = [f"# {res['scene']} across fidelity tiers", "",
@@ -124,11 +120,11 @@ def markdown(res):
         for k in keys:
             vals = [res["tiers"][t]["observables"].get(tk, {}).get(k) for t in tiers]
             ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(tk, {}).get(k) for t in tiers[1:]]
-            lines.append(f"| {k} | {tk} | " + " | ".join(fmt(v) for v in vals) + " | " +
-                         ", ".join(fmt(c) for c in ch) + " |")
+            lines.append(f"| {k} | {tk} | " + " | ".join(report.fmt(v) for v in vals) + " | " +
+                         ", ".join(report.fmt(c) for c in ch) + " |")
     for k in ("arrival_at_1.38m_s", "subcritical_after_arrival_s"):
         vals = [res["tiers"][t]["observables"].get(k) for t in tiers]
-        lines.append(f"| {k} | - | " + " | ".join(fmt(v) for v in vals) + " | |")
+        lines.append(f"| {k} | - | " + " | ".join(report.fmt(v) for v in vals) + " | |")
     pp = res.get("paper_physics_on_bench_geometry")
     if pp:
         lines += ["", "Paper modulus, DEM step and exchange interval on the bench's quick geometry "
