@@ -87,7 +87,7 @@ def main():
                     help="couplingProperties dragIntegration (default: the case's)")
     ap.add_argument("--liquid", default="HB", choices=("HB", "W", "B"),
                     help="the liquid of this case in cases/ (default HB: the issue's HB&P)")
-    ap.add_argument("--drag-fluid-response", choices=("none", "share"),
+    ap.add_argument("--drag-fluid-response", choices=("none", "share", "continuity"),
                     help="couplingProperties dragFluidResponse (default: the case's)")
     ap.add_argument("--rayleigh-fraction", type=float,
                     help="demDict rayleighFraction, the DEM step in Rayleigh times, for the "

@@ -37,7 +37,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
     p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});
   p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
   p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
-  p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share"});
+  p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share", "continuity"});
   p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
   p.maxVelocity = d.scalarOr("maxVelocity", 100.0, Range::positive());
   return p;

@@ -12,7 +12,8 @@
 //   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
 //   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
 //                                   // held: the exchange's drag held over the interval
-//   dragFluidResponse   none;       // implicit only: none | share (the fluid velocity the drag
+//   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid velocity
+//   the drag
 //                                   // sees within an interval; see below)
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
@@ -50,6 +51,9 @@ struct CouplingProperties {
   // given so far (backward Euler for the pair); the fluid step receives exactly -J / T,
   // explicitly. Meant for liquids whose relaxation time m_f / beta is shorter than T (viscous
   // liquids); coupling/README.md, "Drag integration", has what it changes and what it does not.
+  // continuity: the drag sees U - c (v - v_ref), c = (1 - eps_f) / eps_f: the cell's mixture volume
+  // flux is held over the interval instead of U, so the pore fluid counterflows a compacting bed
+  // within the interval as the fluid step's continuity will make it (DemLink.h).
   std::string dragFluidResponse = "none";
   // held only: the drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the
   // exchange interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.

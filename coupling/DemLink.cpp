@@ -20,7 +20,9 @@ namespace {
 const char* kFixId = "mixflowFluidForce";
 const char* kStateId = "mixflowDragState";
 // Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3), 1 / m_f,
-// the fluid share's own acceleration(3).
+// the fluid share's own acceleration(3), counterflow factor c, the sum of the particle's
+// half-step velocities over this interval(3), its mean velocity over the last interval(3) and
+// over the one before(3) (v_ref: what the fluid step behind U saw).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -29,7 +31,11 @@ enum State {
   kLastDrag = 10,
   kInvFluidMass = 13,
   kAccel = 14,
-  kStateSize = 17
+  kCounterflow = 17,
+  kVelocitySum = 18,
+  kMeanVelocityLast = 21,
+  kMeanVelocityRef = 24,
+  kStateSize = 27
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -66,11 +72,15 @@ double** DemLink::state() const {
 }
 
 // Backward Euler for the drag in the half-step velocity update of velocity Verlet: the velocity
-// after this step's force is v' = v + dt (f_other + F_explicit + F_d) / m with F_d = beta (U -
-// v'), hence F_d = beta_eff (U - v - dt (f_other + F_explicit) / m). LIGGGHTS applies each
-// step's force over dt (half in final_integrate, half in the next initial_integrate); a setup
-// (a run after atoms were deleted) recomputes the force of the same step, which then replaces
-// the old one for the second half: the impulse is corrected by dt/2 (new - old).
+// after this step's force is v' = v + dt (f_other + F_explicit + F_d) / m with F_d = beta (Uf -
+// (1 + c) v'), Uf = U + a tau - J / m_f + c v_ref the parts of the seen fluid velocity that do
+// not depend on v' (DemLink.h), hence F_d = beta_eff (Uf - (1 + c) (v + dt (f_other +
+// F_explicit) / m)), beta_eff = beta / (1 + beta dt ((1 + c) / m + 1 / m_f)). LIGGGHTS applies
+// each step's force over dt (half in final_integrate, half in the next initial_integrate); a
+// setup (a run after atoms were deleted) recomputes the force of the same step, which then
+// replaces the old one for the second half: the impulse is corrected by dt/2 (new - old).
+// The velocity here is the half-step one (post_force follows initial_integrate), whose sum times
+// dt is exactly the interval's displacement.
 void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   LAMMPS_NS::LAMMPS* lmp = session_.lammps();
   const LAMMPS_NS::Atom* a = lmp->atom;
@@ -83,15 +93,18 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
     double* si = s[i];
     const double dtm = dt / a->rmass[i];
     const double invMf = si[kInvFluidMass];
-    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * (dtm + dt * invMf));
+    const double c = si[kCounterflow];
+    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * dt * ((1.0 + c) / a->rmass[i] + invMf));
     for (int k = 0; k < 3; ++k) {
       const double fexp = si[kFexp + k];
       // The fluid share's velocity before this step's drag (a repeated step's old drag undone).
       const double impulse = si[kImpulse + k] - (repeat ? dt * si[kLastDrag + k] : 0.0);
-      const double Uf = si[kU + k] + tau * si[kAccel + k] - invMf * impulse;
-      const double drag = betaEff * (Uf - a->v[i][k] - dtm * (a->f[i][k] + fexp));
+      const double Uf =
+          si[kU + k] + tau * si[kAccel + k] - invMf * impulse + c * si[kMeanVelocityRef + k];
+      const double drag = betaEff * (Uf - (1.0 + c) * (a->v[i][k] + dtm * (a->f[i][k] + fexp)));
       si[kImpulse + k] += repeat ? 0.5 * dt * (drag - si[kLastDrag + k]) : dt * drag;
       si[kLastDrag + k] = drag;
+      if (!repeat && tau > 0) si[kVelocitySum + k] += a->v[i][k];  // not a run's setup
       fexternal[i][k] = drag + fexp;
     }
   }
@@ -111,6 +124,7 @@ void DemLink::pullApplied(std::vector<AppliedDrag>& applied) const {
     applied[i].impulse = Vec3(si[kImpulse], si[kImpulse + 1], si[kImpulse + 2]);
     applied[i].invFluidMass = si[kInvFluidMass];
     applied[i].fluidAcceleration = Vec3(si[kAccel], si[kAccel + 1], si[kAccel + 2]);
+    applied[i].counterflow = si[kCounterflow];
   }
 }
 
@@ -121,12 +135,19 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
   const int n = session_.lammps()->atom->nlocal;
   if (static_cast<int>(next.size()) != n)
     throw std::runtime_error("coupling: force count differs from the local particle count");
+  const long steps = session_.step() - intervalStart_;  // of the interval just run (0: none)
   intervalStart_ = session_.step();
   for (int i = 0; i < n; ++i) {
     double* si = s[i];
     si[kBeta] = next[i].beta;
     si[kInvFluidMass] = next[i].invFluidMass;
+    si[kCounterflow] = next[i].counterflow;
     for (int k = 0; k < 3; ++k) {
+      // The mean velocities shift by one interval: the next interval's v_ref is the mean over
+      // the interval before the one just run (see DemLink.h).
+      si[kMeanVelocityRef + k] = si[kMeanVelocityLast + k];
+      si[kMeanVelocityLast + k] = steps > 0 ? si[kVelocitySum + k] / steps : 0.0;
+      si[kVelocitySum + k] = 0.0;
       si[kU + k] = next[i].U[k];
       si[kFexp + k] = next[i].explicitForce[k];
       si[kImpulse + k] = 0.0;

@@ -18,6 +18,13 @@
 //             F_d = beta (U - J/m_f - v - dt (f_other + F_explicit) / m) / (1 + beta dt (1/m +
 //             1/m_f)), so particle and fluid share relax to their common velocity within the
 //             interval, as they would if the fluid were solved alongside.
+//             With a counterflow factor c (AppliedDrag::counterflow, dragFluidResponse
+//             continuity) the fluid velocity seen is U - c (v - v_ref): the mixture volume flux
+//             eps U + (1 - eps) v of the particle's cell is held over the interval instead of U,
+//             v_ref being the particle's mean velocity over the interval whose displacement the
+//             fluid step behind U saw (two intervals back: the exchange samples the fluid before
+//             its step). Backward Euler: F_d = beta (U + c v_ref - (1 + c) v') with v' the
+//             velocity after the step; the terminal slip stays f_other / beta.
 //             f_other is the force LIGGGHTS has summed when this fix's post_force runs (pair,
 //             gravity, walls: fixes defined before it), so this fix must be the last force fix.
 //             Particles must be integrated by LIGGGHTS (a fixed bed without an integrator
@@ -53,6 +60,8 @@ struct AppliedDrag {
   // The share's acceleration by the fluid's own forces (the last fluid step's), so that its
   // velocity is U + a tau - impulse / m_f at tau into the interval.
   Vec3 fluidAcceleration;
+  // c = (1 - eps) / eps of the particle's cell (dragFluidResponse continuity); 0: U held.
+  double counterflow = 0;
 };
 
 class DemLink {

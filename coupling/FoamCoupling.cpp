@@ -446,9 +446,9 @@ namespace {
 
 // Record layouts of the three point-to-point rounds of an exchange (doubles).
 constexpr int kR1 = 10;      // owner index, tag, x(3), v(3), radius, mass
-constexpr int kR2Head = 15;  // owner index, work index, local inside volume, holds centre,
-                             // beta, F_explicit(3), U_i(3), 1 / m_f, fluid's own acceleration(3);
-                             // then 3 per force model
+constexpr int kR2Head = 16;  // owner index, work index, local inside volume, holds centre,
+                             // beta, F_explicit(3), U_i(3), 1 / m_f, fluid's own acceleration(3),
+                             // counterflow factor c; then 3 per force model
 constexpr int kR3 = 16;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
                              // holds centre, drag given explicitly(3) (part of F_explicit)
 
@@ -488,6 +488,7 @@ void FoamCoupling::exchange() {
   const size_t nOwn = own.size();
   const bool implicitDrag = link_->mode() == DemLink::DragIntegration::implicit;
   const bool fluidShare = implicitDrag && props_->dragFluidResponse == "share";
+  const bool continuity = implicitDrag && props_->dragFluidResponse == "continuity";
   if (fluidShare) updateFluidOwnAcceleration();
   std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
   if (implicitDrag) link_->pullApplied(applied);
@@ -514,6 +515,7 @@ void FoamCoupling::exchange() {
     Vec3 Ui;
     double invFluidMass = 0;  // 1 / m_f of the particle's fluid share (dragFluidResponse share)
     Vec3 fluidAcceleration;   // the share's acceleration by the fluid's own forces
+    double counterflow = 0;   // c = (1 - eps) / eps (dragFluidResponse continuity)
     std::vector<Vec3> modelForces;
   };
   std::vector<Work> work;
@@ -607,6 +609,8 @@ void FoamCoupling::exchange() {
       if (solid > 0 && f.rho > 0) w.invFluidMass = solid / (f.rho * f.voidfraction * w.p.volume());
       w.fluidAcceleration = fluidOwnAcceleration_[c];
     }
+    // The pore fluid's response to the particle's velocity at a held mixture flux (DemLink.h).
+    if (continuity && f.voidfraction > 0) w.counterflow = (1.0 - f.voidfraction) / f.voidfraction;
     w.modelForces.resize(nModels);
     for (size_t m = 0; m < nModels; ++m) {
       fms[m] = forceModels_[m]->force(w.p, f);
@@ -623,8 +627,9 @@ void FoamCoupling::exchange() {
       // grain towards that lagged counterflow. With s = beta T / m and c = (1 - eps) / eps one
       // exchange multiplies a compaction velocity by (1 - c s) / (1 + s): it grows, alternating
       // in sign, once s (c - 1) > 2 (coupling/README.md, "Exchange interval").
+      // dragFluidResponse continuity has the drag see that counterflow, which removes it.
       const double eps = f.voidfraction;
-      if (eps > 0) {
+      if (eps > 0 && !continuity) {
         const double bound =
             w.force.beta * exchangeInterval_ / w.p.mass * ((1 - eps) / eps - 1) / 2;
         counterflowMax = std::max(counterflowMax, bound);
@@ -660,7 +665,7 @@ void FoamCoupling::exchange() {
              {static_cast<double>(w.ownerIndex), static_cast<double>(k), inside, centre ? 1.0 : 0.0,
               w.force.beta, w.force.explicitForce.x, w.force.explicitForce.y,
               w.force.explicitForce.z, w.Ui.x, w.Ui.y, w.Ui.z, w.invFluidMass,
-              w.fluidAcceleration.x, w.fluidAcceleration.y, w.fluidAcceleration.z});
+              w.fluidAcceleration.x, w.fluidAcceleration.y, w.fluidAcceleration.z, w.counterflow});
     for (size_t m = 0; m < nModels; ++m) {
       const Vec3 F = centre ? w.modelForces[m] : Vec3();
       b.insert(b.end(), {F.x, F.y, F.z});
@@ -682,6 +687,7 @@ void FoamCoupling::exchange() {
     Vec3 Ui;
     double invFluidMass = 0;
     Vec3 fluidAcceleration;
+    double counterflow = 0;
     // What the fluid receives for this CFD step: the force at this exchange (held), or the mean
     // force the particle actually received over the DEM interval just run (implicit), written as
     // beta (U - v) + F_explicit with the velocity v that reproduces the drag impulse.
@@ -706,6 +712,7 @@ void FoamCoupling::exchange() {
         o.Ui = Vec3(r[8], r[9], r[10]);
         o.invFluidMass = r[11];
         o.fluidAcceleration = Vec3(r[12], r[13], r[14]);
+        o.counterflow = r[15];
         for (size_t m = 0; m < 3 * nModels; ++m) modelTotals_[m] += r[kR2Head + m];
       }
     }
@@ -722,7 +729,8 @@ void FoamCoupling::exchange() {
     o.reactionV = own[i].v;
     if (implicitDrag) {
       next[i] = AppliedDrag{o.force.beta, o.Ui,           o.force.explicitForce,
-                            Vec3(),       o.invFluidMass, o.fluidAcceleration};
+                            Vec3(),       o.invFluidMass, o.fluidAcceleration,
+                            o.counterflow};
       o.reaction.beta = o.force.beta * fluidSideScale(o.force.beta, own[i].mass);
       if (exchanges_ > 0 && fluidShare) {
         // The particle's drag already saw its fluid share respond (DemLink): the fluid step gets

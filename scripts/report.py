@@ -192,6 +192,33 @@ def particle_energies(s):
     return t, ek / s.width, col(s.dem, "pe_J") / s.width
 
 
+def energy_excess(s):
+    """Energy the scene made: max over t of E_k(t) - (E_p(0) - E_p(t)), grains (translational +
+    rotational) and liquid together, J per metre of width, with (t, E_k, released) there. A
+    closed scene without inflow only dissipates, so this stays <= 0 but for the elastic energy
+    the settled sample stores in its contacts (not in E_p; the dry scene P shows its size) and
+    what a numerical scheme creates. Grains or liquid leaving through the outlet take their
+    energies along, which keeps the inequality. None without energies."""
+    parts = []
+    if s.dem:
+        t = col(s.dem, "time_s")
+        parts.append((t, col(s.dem, "ke_translational_J") + np.nan_to_num(col(s.dem, "ke_rotational_J")),
+                      col(s.dem, "pe_J")))
+    if s.liquid:
+        parts.append((col(s.liquid, "time_s"), col(s.liquid, "kinetic_energy_J"),
+                      col(s.liquid, "potential_energy_J")))
+    if not parts:
+        return None
+    t = parts[0][0]
+    t = t[t <= min(p[0][-1] for p in parts)]
+    ek = sum(np.interp(t, tp, k) for tp, k, _ in parts)
+    released = sum(p[0] - np.interp(t, tp, p) for tp, _, p in parts)
+    i = int(np.argmax(ek - released))
+    w = s.width
+    return {"excess_J_per_m": (ek[i] - released[i]) / w, "t_s": t[i], "kinetic_J_per_m": ek[i] / w,
+            "released_J_per_m": released[i] / w}
+
+
 def e_pd(mix, dry):
     """Eq. 13 with energies per metre of width: (loss_mixture - loss_dry) / loss_dry,
     loss = E_pp0 - E_pp - E_kp; the dry loss interpolated at the mixture's times."""
@@ -740,6 +767,21 @@ def write_report(out, work, sc, F, rows, law, command):
         lines += [f"### {title}", "", f"![{title}]({name})", ""]
     if F.skipped:
         lines += ["Not drawn:", ""] + [f"- `{n}`: {why}" for n, why in F.skipped] + [""]
+    budget = [(n, sc[n], energy_excess(sc[n])) for n in fin]
+    budget = [b for b in budget if b[2] is not None]
+    if budget:
+        lines += ["## Energy budget", "",
+                  "Largest excess of kinetic energy over released potential energy (grains and liquid "
+                  "together, J per metre of width): a closed dam break only dissipates, so a positive "
+                  "value is the elastic energy stored in the settled sample's contacts (the dry scene P "
+                  "has only that) or energy a numerical scheme made (coupling/README.md, \"Energy "
+                  "budget\").", "",
+                  "| scene | tier | excess (J/m) | at t (s) | kinetic (J/m) | released (J/m) |",
+                  "|---|---|---|---|---|---|"]
+        for n, s, e in budget:
+            lines.append(f"| {s.paper_name} | {s.tier or '-'} | {fmt(e['excess_J_per_m'])} | "
+                         f"{fmt(e['t_s'])} | {fmt(e['kinetic_J_per_m'])} | {fmt(e['released_J_per_m'])} |")
+        lines.append("")
     if law.get("rows"):
         lines += ["## Dry runouts", "", "| scene | a (settled) | (l∞ − L)/L cluster | one-grain-thick | stop |",
                   "|---|---|---|---|---|"]
@@ -794,6 +836,7 @@ def main(argv=None):
                "paper_vs_ours": rows,
                "runout_law": {k: v for k, v in law.items()},
                "subcritical_after_arrival_s": {n: subcritical(sc[n])[1] for n in LIQUIDS + MIXTURES if sc[n].done},
+               "energy_excess": {n: energy_excess(sc[n]) for n in fin},
                "figures": [n for n, _ in F.made], "figures_not_drawn": dict(F.skipped)}
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(clean(summary), f, indent=2)

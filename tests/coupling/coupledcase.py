@@ -224,7 +224,7 @@ def add_parallel_args(ap):
 
 
 def add_fluid_response_arg(ap):
-    ap.add_argument("--drag-fluid-response", default="none", choices=("none", "share"),
+    ap.add_argument("--drag-fluid-response", default="none", choices=("none", "share", "continuity"),
                     help="couplingProperties dragFluidResponse (implicit drag)")
 
 
