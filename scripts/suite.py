@@ -2,7 +2,7 @@
 """Runs the scenes of Li & Zhao (2018) Table 1 at a fidelity tier (issue 6). docs/suite.md.
 
 usage: suite.py --tier quick|reference|paper|FILE [--np N] [--scenes P,W,HB+P,...] [--work DIR]
-                [--cost-only] [--force] [--dry-run] [--progress-every S]
+                [--cost-only] [--force] [--dry-run] [--progress-every S] [--set FILE.ENTRY=VALUE ...]
 
 For each scene: cases/<scene> is copied to WORK/<scene> (once), the tier's overrides
 (cases/tiers/<tier>) are set in the copy's files and recorded in WORK/<scene>/system/tier, then
@@ -333,16 +333,37 @@ class Tier:
         self.common = {k: v for k, v in d.items() if k in FILES}
         self.by_content = {c: d.get(c, {}) for c in CONTENTS}
         self.scenes = d.get("scenes", {})
+        self.sets, self.set_text = {}, ""
+
+    def set_entries(self, items):
+        """Command-line overrides FILE.entry[.sub]=VALUE (--set), applied after the tier's own and
+        recorded with the run: a variant of a tier (another drag scheme, exchange interval ...)
+        is then a rerunnable command rather than a hand-edited copy."""
+        for item in items:
+            key, sep, value = item.partition("=")
+            fkey, *path = key.split(".")
+            if not sep or not path or not value.strip():
+                raise DictError(f"--set '{item}': expected FILE.entry=VALUE")
+            if fkey not in FILES:
+                raise DictError(f"--set '{item}': '{fkey}' is not a case file (allowed: {', '.join(FILES)})")
+            node = self.sets.setdefault(fkey, {})
+            for b in path[:-1]:
+                node = node.setdefault(b, {})
+            node[path[-1]] = value.strip()
+        self.set_text = " ".join(items)
 
     def overrides(self, scene, content):
-        """{file: nested overrides} for SCENE of CONTENT: common, then content, then scene."""
-        return _merge(_merge(self.common, self.by_content.get(content, {})),
-                      self.scenes.get(scene, {}))
+        """{file: nested overrides} for SCENE of CONTENT: common, then content, then scene, then
+        the command line's --set."""
+        return _merge(_merge(_merge(self.common, self.by_content.get(content, {})),
+                             self.scenes.get(scene, {})), self.sets)
 
     def optional(self, file_key, block_path=()):
         """True if the tier lists FILE (or FILE.block...) as content-specific."""
         names = [file_key] + [".".join((file_key,) + tuple(block_path[:i + 1]))
                               for i in range(len(block_path))]
+        if file_key in self.sets:  # asked for on the command line: must apply
+            return False
         return any(n in self.content_specific for n in names)
 
 
@@ -398,7 +419,8 @@ def tier_record(tier, scene, content, records):
             f"tier        {tier.name};\n"
             f"tierFile    \"{tier.path}\";\n"
             f"description \"{tier.description}\";\n"
-            f"scene       {scene};\n"
+            + (f"set         \"{tier.set_text}\";\n" if tier.set_text else "")
+            + f"scene       {scene};\n"
             f"content     {content};\n"
             + format_dict(trees))
 
@@ -524,6 +546,9 @@ def plan_scene(scene, work, tier, ranks):
             if rec.get("tier") != tier.name:
                 raise DictError(f"{run_dir} was made with tier '{rec.get('tier')}', not "
                                 f"'{tier.name}': choose another --work")
+            if unquote(rec.get("set", "")) != tier.set_text:
+                raise DictError(f"{run_dir} was made with --set '{unquote(rec.get('set', ''))}', not "
+                                f"'{tier.set_text}': choose another --work")
             p["content"] = rec["content"]
             p["texts"], p["records"] = {}, []
             if p["content"] == "particles" and os.path.isfile(os.path.join(run_dir, "dem", "resume.state")):
@@ -836,9 +861,13 @@ def main(argv=None):
                     "paper: 0.01 for particle scenes, 0.02 for liquids; other tiers: 0.3)")
     ap.add_argument("--cost-settle", type=float, default=0.002,
                     help="settling cap (s) of a particle cost run (default 0.002)")
+    ap.add_argument("--set", action="append", default=[], metavar="FILE.ENTRY=VALUE",
+                    help="override a case entry after the tier's, e.g. couplingProperties."
+                    "dragIntegration=implicit (repeatable; recorded in system/tier; needs its own --work)")
     args = ap.parse_args(argv)
     try:
         tier = Tier(args.tier)
+        tier.set_entries(args.set)
     except DictError as e:
         sys.exit(f"suite.py: {e}")
     args.work = os.path.abspath(args.work or os.path.join(ROOT, "runs", tier.name))

@@ -197,6 +197,30 @@ check(p["status"] == "error" and "tier 'quick'" in p["error"], "a copy of anothe
 open(os.path.join(copy_dir, ".done"), "w").close()
 check(suite.plan_scene("P", os.path.join(work, "copy"), tier, 2)["status"] == "done", ".done is skipped")
 
+# --set: a variant of a tier, applied after it (inserted if absent), recorded, and refused on a
+# copy made without it; a malformed or unknown-file --set is refused.
+var = suite.Tier("quick")
+var.set_entries(["couplingProperties.dragIntegration=implicit",
+                 "couplingProperties.dragFluidResponse=continuity", "demDict.youngModulusFactor=2e-4"])
+texts, recs = suite.tier_edits(os.path.join(ROOT, "cases", "HB+P"), var, "HB+P")
+var_dir = os.path.join(work, "variant", "HB+P")
+suite.make_copy("HB+P", var_dir, var, texts, recs, "mixture")
+cp = suite.read_dict(os.path.join(var_dir, "constant", "couplingProperties"))
+check(cp["dragIntegration"] == "implicit" and cp["dragFluidResponse"] == "continuity",
+      "--set replaces an entry and inserts a missing one")
+check(suite.read_dict(os.path.join(var_dir, "system", "demDict"))["youngModulusFactor"] == "2e-4",
+      "--set wins over the tier's own value")
+rec = suite.read_dict(os.path.join(var_dir, "system", "tier"))
+check(suite.unquote(rec["set"]) == var.set_text and
+      rec["overrides"]["constant/couplingProperties"]["dragFluidResponse"] == "continuity",
+      "system/tier records --set")
+p = suite.plan_scene("HB+P", os.path.join(work, "variant"), suite.Tier("quick"), 1)
+check(p["status"] == "error" and "--set" in p["error"], "a copy made with other --set is refused")
+for bad_set, words in (("couplingProperties.dragIntegration", "FILE.entry=VALUE"),
+                       ("nosuchFile.x=1", "not a case file")):
+    ok, msg = raises(lambda b=bad_set: suite.Tier("quick").set_entries([b]), *words.split("|"))
+    check(ok, f"--set '{bad_set}' refused ({msg})")
+
 # 5. Resume helpers.
 csvp = os.path.join(work, "ts.csv")
 with open(csvp, "w") as f:
