@@ -12,9 +12,8 @@
 //   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
 //   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
 //                                   // held: the exchange's drag held over the interval
-//   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid velocity
-//   the drag
-//                                   // sees within an interval; see below)
+//   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid
+//                                   // velocity the drag sees within an interval; see below)
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
 //   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B

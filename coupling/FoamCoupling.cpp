@@ -609,8 +609,10 @@ void FoamCoupling::exchange() {
       if (solid > 0 && f.rho > 0) w.invFluidMass = solid / (f.rho * f.voidfraction * w.p.volume());
       w.fluidAcceleration = fluidOwnAcceleration_[c];
     }
-    // The pore fluid's response to the particle's velocity at a held mixture flux (DemLink.h).
-    if (continuity && f.voidfraction > 0) w.counterflow = (1.0 - f.voidfraction) / f.voidfraction;
+    // c = (1 - eps) / eps: how fast the pore fluid counterflows a compacting grain (continuity
+    // in a cell of held mixture flux); the continuity response and the stability bound below.
+    const double counterflow = f.voidfraction > 0 ? (1.0 - f.voidfraction) / f.voidfraction : 0.0;
+    if (continuity) w.counterflow = counterflow;
     w.modelForces.resize(nModels);
     for (size_t m = 0; m < nModels; ++m) {
       fms[m] = forceModels_[m]->force(w.p, f);
@@ -628,10 +630,8 @@ void FoamCoupling::exchange() {
       // exchange multiplies a compaction velocity by (1 - c s) / (1 + s): it grows, alternating
       // in sign, once s (c - 1) > 2 (coupling/README.md, "Exchange interval").
       // dragFluidResponse continuity has the drag see that counterflow, which removes it.
-      const double eps = f.voidfraction;
-      if (eps > 0 && !continuity) {
-        const double bound =
-            w.force.beta * exchangeInterval_ / w.p.mass * ((1 - eps) / eps - 1) / 2;
+      if (f.voidfraction > 0 && !continuity) {
+        const double bound = w.force.beta * exchangeInterval_ / w.p.mass * (counterflow - 1) / 2;
         counterflowMax = std::max(counterflowMax, bound);
         if (bound > 1) counterflowUnstable += 1.0;
       }

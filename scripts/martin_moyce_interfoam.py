@@ -36,14 +36,9 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
 sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))
-import foamcase as fc  # noqa: E402
 import run_liquid_cases as rlc  # noqa: E402
 
-SIDE = 0.05715
-# The test builds this scene inside martin_moyce(); it is not importable, so it is restated here.
-SCENE = (f"content liquid;\nsample {{ length {SIDE}; height {SIDE}; width {SIDE}; }}\n"
-         f"channel {{ length {6 * SIDE}; height {1.5 * SIDE}; }}\n"
-         "liquid { rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0.07; }\n")
+SIDE = rlc.MM_SIDE
 
 
 def build_observables_lib(build, out):
@@ -61,19 +56,17 @@ def build_observables_lib(build, out):
 
 
 def run(a, name, solver, lib=None):
+    """The test's case on a/CELLS through run_case (prepare, blockMesh, SOLVER, the front rule's
+    check), with LIB loaded by SOLVER if given: (case, time series, wall time)."""
     case = os.path.join(a.work, name)
-    rlc.write_case(case, SCENE, f"dimensions 2;\ncellSize {SIDE / a.cells:.10g};\n", 0.26, 0.13)
+    rlc.write_martin_moyce_case(case, a.cells)
     if lib:  # controlDict's own entries follow the generated include and win
         with open(os.path.join(case, "system/controlDict"), "a") as f:
             f.write(f'libs ("{lib}");\n')
-    fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
-    fc.run([a.blockmesh], case, "log.blockMesh")
     t0 = time.time()
-    log = fc.run([solver], case, f"log.{name}")
-    wall = time.time() - t0
-    if "liquidObservables liquid:" not in log:
-        fc.fail(f"{case}: liquidObservables did not run")
-    return case, rlc.read_series(case), wall
+    series = rlc.run_case(argparse.Namespace(prepare=a.prepare, blockmesh=a.blockmesh,
+                                             solver=solver), case)
+    return case, series, time.time() - t0
 
 
 def differing_inputs(c1, c2):
@@ -94,8 +87,8 @@ def main():
     p.add_argument("--solver", default=os.path.join(ROOT, "build/bin/mixflowFoam"))
     p.add_argument("--interfoam", default="/usr/bin/interFoam")
     p.add_argument("--blockmesh", default="/usr/bin/blockMesh")
-    p.add_argument("--reference",
-                   default="/work/shared/reference/martin_moyce_1952_n2eq1_front_height.csv")
+    p.add_argument("--reference", default=os.path.join(
+        ROOT, "..", "shared", "reference", "martin_moyce_1952_n2eq1_front_height.csv"))
     p.add_argument("--out", default=os.path.join(ROOT, "results/pure_liquids/"
                                                         "martin_moyce_interfoam.csv"))
     a = p.parse_args()
@@ -110,10 +103,7 @@ def main():
 
     ts = math.sqrt(SIDE / rlc.G)
     t_end = min(mix[-1]["time_s"], itf[-1]["time_s"]) / ts
-    ref = {"front_Z": {}, "height_eta": {}}
-    with open(a.reference) as f:
-        for row in csv.DictReader(line for line in f if not line.startswith("#")):
-            ref[row["quantity"]][float(row["T_or_tau"])] = float(row["value"])
+    ref = {q: dict(pts) for q, pts in rlc.read_martin_moyce(a.reference).items()}
 
     def sim(series, key, T):
         return rlc.interp(series, key, T * ts) / SIDE

@@ -199,14 +199,10 @@ def energy_excess(s):
     the settled sample stores in its contacts (not in E_p; the dry scene P shows its size) and
     what a numerical scheme creates. Grains or liquid leaving through the outlet take their
     energies along, which keeps the inequality. None without energies."""
-    parts = []
-    if s.dem:
-        t = col(s.dem, "time_s")
-        parts.append((t, col(s.dem, "ke_translational_J") + np.nan_to_num(col(s.dem, "ke_rotational_J")),
-                      col(s.dem, "pe_J")))
+    parts = [particle_energies(s)] if s.dem else []  # (t, E_k, E_p) per metre of width
     if s.liquid:
-        parts.append((col(s.liquid, "time_s"), col(s.liquid, "kinetic_energy_J"),
-                      col(s.liquid, "potential_energy_J")))
+        parts.append((col(s.liquid, "time_s"), col(s.liquid, "kinetic_energy_J") / s.width,
+                      col(s.liquid, "potential_energy_J") / s.width))
     if not parts:
         return None
     t = parts[0][0]
@@ -214,9 +210,8 @@ def energy_excess(s):
     ek = sum(np.interp(t, tp, k) for tp, k, _ in parts)
     released = sum(p[0] - np.interp(t, tp, p) for tp, _, p in parts)
     i = int(np.argmax(ek - released))
-    w = s.width
-    return {"excess_J_per_m": (ek[i] - released[i]) / w, "t_s": t[i], "kinetic_J_per_m": ek[i] / w,
-            "released_J_per_m": released[i] / w}
+    return {"excess_J_per_m": ek[i] - released[i], "t_s": t[i], "kinetic_J_per_m": ek[i],
+            "released_J_per_m": released[i]}
 
 
 def e_pd(mix, dry):

@@ -359,11 +359,15 @@ class Tier:
                              self.scenes.get(scene, {})), self.sets)
 
     def optional(self, file_key, block_path=()):
-        """True if the tier lists FILE (or FILE.block...) as content-specific."""
+        """True if the tier lists FILE (or FILE.block...) as content-specific, unless --set names
+        something in it (asked for on the command line: it must apply)."""
+        node = self.sets.get(file_key)
+        for b in block_path:
+            node = node.get(b) if isinstance(node, dict) else None
+        if node is not None:
+            return False
         names = [file_key] + [".".join((file_key,) + tuple(block_path[:i + 1]))
                               for i in range(len(block_path))]
-        if file_key in self.sets:  # asked for on the command line: must apply
-            return False
         return any(n in self.content_specific for n in names)
 
 

@@ -131,23 +131,38 @@ def interp(series, key, t):
 
 
 # ------------------------------------------------------------------------------- Martin & Moyce
-def martin_moyce(a, work):
-    side = 0.05715
-    ts = math.sqrt(side / G)
+# The scene (also run on interFoam by scripts/martin_moyce_interfoam.py).
+MM_SIDE = 0.05715
+MM_SCENE = (f"content liquid;\nsample {{ length {MM_SIDE}; height {MM_SIDE}; width {MM_SIDE}; }}\n"
+            f"channel {{ length {6 * MM_SIDE}; height {1.5 * MM_SIDE}; }}\n"
+            "liquid { rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0.07; }\n")
+
+
+def write_martin_moyce_case(case, cells):
+    """The column on a/CELLS, 2-D, to t = 0.26 s (T = 3.4)."""
+    write_case(case, MM_SCENE, f"dimensions 2;\ncellSize {MM_SIDE / cells:.10g};\n", 0.26, 0.13)
+
+
+def read_martin_moyce(path):
+    """{"front_Z": [(T, Z)], "height_eta": [(tau, eta)]} of the reference file."""
     ref = {"front_Z": [], "height_eta": []}
-    with open(a.martin_moyce) as f:
+    with open(path) as f:
         for line in f:
             if line.startswith("#") or line.startswith("quantity"):
                 continue
             q, t, v = line.strip().split(",")
             ref[q].append((float(t), float(v)))
-    scene = (f"content liquid;\nsample {{ length {side}; height {side}; width {side}; }}\n"
-             f"channel {{ length {6 * side}; height {1.5 * side}; }}\n"
-             "liquid { rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0.07; }\n")
+    return ref
+
+
+def martin_moyce(a, work):
+    side = MM_SIDE
+    ts = math.sqrt(side / G)
+    ref = read_martin_moyce(a.martin_moyce)
     runs = {}
     for n in (10, 20, 40):
         case = os.path.join(work, f"martin_moyce_a{n}")
-        write_case(case, scene, f"dimensions 2;\ncellSize {side / n:.10g};\n", 0.26, 0.13)
+        write_martin_moyce_case(case, n)
         runs[n] = run_case(a, case)
         print(f"  mesh a/{n}: {len(runs[n])} rows", flush=True)
 
