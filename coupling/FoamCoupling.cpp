@@ -398,8 +398,9 @@ void FoamCoupling::checkFluid() const {
         << (badU ? "U, |U| = " : "p = ") << (badU ? u : p[c]) << " in cell " << c << " at ("
         << x.x() << " " << x.y() << " " << x.z() << ") (maxVelocity " << props_->maxVelocity
         << " m/s, couplingProperties). Outputs up to the last write time are kept "
-           "(time directories, postProcessing/, VTK/); dragIntegration implicit, a smaller "
-           "exchangeEvery or a finer DEM step are the usual cures";
+           "(time directories, postProcessing/, VTK/); dragIntegration "
+        << (link_->mode() == DemLink::DragIntegration::held ? "implicit" : "held")
+        << ", a smaller exchangeEvery or a finer DEM step are the usual cures";
       fatal(m.str());
     }
   }
