@@ -177,10 +177,20 @@ def subcritical(s):
     return t0, (None if ts is None or t0 is None else ts - t0)
 
 
+def back_wall_key(s):
+    """The series column of the flow height at the back wall: the liquid surface height
+    (back_wall_surface_m, the pores of a saturated granular layer counted full: the paper's
+    "maximum flow height near the left boundary wall"), or, in a run written before that column
+    existed, the liquid volume depth (the same without particles, about eps_f times the surface
+    height in a saturated mixture)."""
+    return "back_wall_surface_m" if s.liquid and "back_wall_surface_m" in s.liquid[0] \
+        else "back_wall_depth_m"
+
+
 def back_wall(s, t):
     if not s.liquid or s.liquid[-1]["time_s"] < t:
         return None
-    return at(s.liquid, "back_wall_depth_m", t) / s.H
+    return at(s.liquid, back_wall_key(s), t) / s.H
 
 
 def particle_energies(s):
@@ -385,7 +395,8 @@ def fig_profiles(F, scenes, times):
                 tw = sorted({r["time_s"] for r in s.profiles}, key=lambda v: abs(v - t))[0]
                 if abs(tw - t) <= 0.06:
                     rows = [r for r in s.profiles if r["time_s"] == tw]
-                    ax.plot(col(rows, "x_m"), col(rows, "depth_m") / s.H, ls, color=c,
+                    key = "surface_m" if "surface_m" in rows[0] else "depth_m"
+                    ax.plot(col(rows, "x_m"), col(rows, key) / s.H, ls, color=c,
                             label=f"{s.paper_name} liquid, t = {tw:.2f} s")
                     drawn += 1
             if s.content in ("particles", "mixture") and s.name in ("P",) + tuple(MIXTURES):
@@ -647,9 +658,13 @@ def table(sc, law):
                 rows.append(row(q, paper, None, s.tier, False, f"the run ended at {s.t_end():.2f} s"))
                 continue
             agree = abs(v - paper) <= 0.05
-            note = ("agrees within 0.05 (liquid depth of the first cell column)" if agree else
-                    "liquid depth of the first cell column; " + fidelity(s) +
-                    ("; without side walls the column drains faster" if v < paper else
+            what = ("liquid surface height of the first cell column" if
+                    back_wall_key(s) == "back_wall_surface_m" else
+                    "liquid volume depth of the first cell column (the run predates the surface "
+                    "height; in a mixture about eps_f times it)")
+            note = (f"agrees within 0.05 ({what})" if agree else
+                    what + "; " + fidelity(s) +
+                    ("; the column slumps more at the wall" if v < paper else
                      "; the regularised liquid (cap 1e4 Pa s) and coarse cells hold more at the wall"))
             rows.append(row(q, paper, round(v, 3), s.tier, agree, note))
 
@@ -754,7 +769,7 @@ def write_report(out, work, sc, F, rows, law, command):
         lines.append(f"| {r['quantity']} | {r['paper']} | {fmt(r['ours'])} | {r['tier']} | {ag} | {r['note']} |")
     lines += ["", "Definitions: liquid front = largest x where the bed cell row holds α ≥ 0.5; "
               "granular front = largest x of the largest connected cluster (gap ≤ 0.5 d); "
-              f"t0 = arrival of the liquid front at x = {SECTION_X} m, subcritical = Fr < 1 held for {HOLD_S} s; "
+              f"t0 = arrival of the liquid front at x = {SECTION_X} m, Fr = v / √(g h) with v the mean liquid velocity and h the liquid surface height there (the pores of a saturated granular layer counted full; runs before that column: the liquid volume depth), subcritical = Fr < 1 held for {HOLD_S} s; back-wall height = the liquid surface height of the first cell column; "
               "energies per metre of width (scenes of different widths compare); E_pd = "
               "([E_pp0 − E_pp − E_kp]_mixture − [same]_dry)/[same]_dry with E_kp translational + "
               "rotational; E_fc = (E_pf0 − (E_pf + E_kf))/E_pf0.", "", "## Figures", ""]

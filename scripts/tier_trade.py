@@ -52,7 +52,7 @@ def observables(s):
         o = {}
         if s.liquid:
             o["liquid_front_m"] = read(s.liquid, "front_bed_m", t)
-            o["back_wall_depth_over_H"] = report.back_wall(s, t)
+            o["back_wall_height_over_H"] = report.back_wall(s, t)
         if efc is not None:
             o["E_fc"] = float(np.interp(t, *efc))
         if s.dem:

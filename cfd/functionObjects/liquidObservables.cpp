@@ -58,8 +58,8 @@ liquidObservables::liquidObservables(const word& name, const Time& runTime, cons
       series_ << "time_s,deltaT_s,front_bed_m,front_any_m,volume_domain_m3,volume_outlet_m3,"
                  "volume_top_m3,volume_balance,kinetic_energy_J,potential_energy_J,mean_ux_m_s,"
                  "mean_uy_m_s,back_wall_depth_m,section_x_m,section_depth_m,"
-                 "section_velocity_m_s,section_froude\n";
-      profiles_ << "time_s,x_m,depth_m,discharge_m2_s\n";
+                 "section_velocity_m_s,section_froude,back_wall_surface_m,section_surface_m\n";
+      profiles_ << "time_s,x_m,depth_m,discharge_m2_s,surface_m\n";
     }
   }
   if (!restart) {
@@ -87,10 +87,16 @@ bool liquidObservables::read(const dictionary& dict) {
   threshold_ = dict.lookupOrDefault<scalar>("frontThreshold", 0.5);
   sectionX_ = dict.lookupOrDefault<scalar>("sectionX", -1);
   minDepth_ = dict.get<scalar>("minDepth");
+  froudeDepth_ = dict.lookupOrDefault<word>("froudeDepth", "surface");
   nColumns_ = dict.get<label>("nColumns");
   if (rhoLiquid_ <= 0 || threshold_ <= 0 || threshold_ >= 1 || minDepth_ <= 0 || nColumns_ < 1) {
     FatalIOErrorInFunction(dict) << type() << ": need rhoLiquid > 0, 0 < frontThreshold < 1, "
                                  << "minDepth > 0, nColumns >= 1" << exit(FatalIOError);
+  }
+  if (froudeDepth_ != "surface" && froudeDepth_ != "volume") {
+    FatalIOErrorInFunction(dict) << type() << ": froudeDepth '" << froudeDepth_
+                                 << "' is not allowed; choose surface or volume"
+                                 << exit(FatalIOError);
   }
   const dictionary& alphaControls = mesh_.solverDict(alphaName_);
   if (alphaControls.lookupOrDefault<label>("nAlphaSubCycles", 1) != 1) {
@@ -150,6 +156,7 @@ liquidObservables::Row liquidObservables::measure() {
 
   Row r;
   depth_ = scalarField(nColumns_, 0.0);
+  surface_ = scalarField(nColumns_, 0.0);
   discharge_ = scalarField(nColumns_, 0.0);
   scalar frontBed = -GREAT, frontAny = -GREAT;
   vector momentum = Zero;
@@ -160,6 +167,7 @@ liquidObservables::Row liquidObservables::measure() {
     r.potential += -rhoLiquid_ * vl * (g.value() & (C[celli] - origin_));
     momentum += vl * U[celli];
     depth_[column_[celli]] += vl;
+    surface_[column_[celli]] += alpha[celli] * V[celli];  // pores counted full
     discharge_[column_[celli]] += vl * U[celli].x();
     if (alpha[celli] >= threshold_) {
       frontAny = max(frontAny, C[celli].x());
@@ -224,22 +232,32 @@ liquidObservables::Row liquidObservables::measure() {
 
   Pstream::listCombineGather(depth_, plusEqOp<scalar>());
   Pstream::listCombineScatter(depth_);
+  Pstream::listCombineGather(surface_, plusEqOp<scalar>());
+  Pstream::listCombineScatter(surface_);
   Pstream::listCombineGather(discharge_, plusEqOp<scalar>());
   Pstream::listCombineScatter(discharge_);
   const scalar area = columnLength_ * width_;  // plan area of a column
   depth_ /= area;
+  surface_ /= area;
   discharge_ /= area;
 
   r.backDepth = depth_[0];
-  r.sectionDepth = r.sectionVelocity = r.froude = kNaN;
+  r.backSurface = surface_[0];
+  r.sectionDepth = r.sectionSurface = r.sectionVelocity = r.froude = kNaN;
   if (sectionI0_ >= 0) {
     const scalar w = sectionW_;
-    const scalar h = (1 - w) * depth_[sectionI0_] + w * depth_[sectionI0_ + 1];
-    const scalar q = (1 - w) * discharge_[sectionI0_] + w * discharge_[sectionI0_ + 1];
+    const auto atSection = [&](const scalarField& f) {
+      return (1 - w) * f[sectionI0_] + w * f[sectionI0_ + 1];
+    };
+    const scalar h = atSection(depth_);
     r.sectionDepth = h;
-    if (h >= minDepth_) {
-      r.sectionVelocity = q / h;
-      r.froude = r.sectionVelocity / std::sqrt(mag(g.value()) * h);
+    r.sectionSurface = atSection(surface_);
+    // Fr = v / sqrt(g h): v the mean liquid velocity q / (liquid volume depth); h the flow depth
+    // froudeDepth says (the liquid surface, or the liquid volume depth).
+    const scalar hFr = froudeDepth_ == "surface" ? r.sectionSurface : h;
+    if (h >= minDepth_ && hFr >= minDepth_) {
+      r.sectionVelocity = atSection(discharge_) / h;
+      r.froude = r.sectionVelocity / std::sqrt(mag(g.value()) * hFr);
     }
   }
   return r;
@@ -255,7 +273,8 @@ void liquidObservables::writeRow(const Row& r) {
           << ',' << outletVolume_ << ',' << topVolume_ << ',' << balance << ',' << r.kinetic << ','
           << r.potential << ',' << r.meanU.x() << ',' << r.meanU.y() << ',' << r.backDepth << ','
           << (sectionI0_ >= 0 ? sectionX_ : kNaN) << ',' << r.sectionDepth << ','
-          << r.sectionVelocity << ',' << r.froude << '\n';
+          << r.sectionVelocity << ',' << r.froude << ',' << r.backSurface << ',' << r.sectionSurface
+          << '\n';
   series_.flush();
 }
 
@@ -264,7 +283,7 @@ void liquidObservables::writeProfiles() {
   const scalar t = mesh_.time().value();
   forAll(depth_, i) {
     profiles_ << t << ',' << origin_.x() + (i + 0.5) * columnLength_ << ',' << depth_[i] << ','
-              << discharge_[i] << '\n';
+              << discharge_[i] << ',' << surface_[i] << '\n';
   }
   profiles_.flush();
 }

@@ -165,6 +165,7 @@ std::string controlDict(const LiquidCase& c) {
     << "        frontThreshold  " << num(c.observables.frontThreshold) << ";\n"
     << "        sectionX        " << num(c.observables.sectionX) << ";   // < 0: none\n"
     << "        minDepth        " << num(c.minDepthUsed()) << ";\n"
+    << "        froudeDepth     " << c.observables.froudeDepth << ";   // surface | volume\n"
     << "        nColumns        " << c.nx << ";\n"
     << "    }\n}\n";
   return s.str();

@@ -156,11 +156,12 @@ void readNumerics(const Dictionary& d, const Rheology& r, CfdNumerics& m, Observ
   m.writeFormat = d.wordOr("writeFormat", m.writeFormat, {"ascii", "binary"});
 
   const Dictionary ob = d.subDictOrEmpty("observables");
-  ob.allowOnly({"frontThreshold", "sectionX", "minDepth"});
+  ob.allowOnly({"frontThreshold", "sectionX", "minDepth", "froudeDepth"});
   o.frontThreshold = ob.scalarOr("frontThreshold", o.frontThreshold, {0.0, 1.0, true, true});
   o.sectionX = ob.scalarOr("sectionX", o.sectionX, Range::positive());
   if (ob.has("minDepth") && ob.text("minDepth") != "auto")
     o.minDepth = ob.scalar("minDepth", Range::positive());
+  o.froudeDepth = ob.wordOr("froudeDepth", o.froudeDepth, {"surface", "volume"});
 }
 
 }  // namespace

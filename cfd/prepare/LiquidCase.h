@@ -67,6 +67,10 @@ struct ObservableSpec {
   double frontThreshold = 0.5;  // alpha_l >= this counts as liquid (physics.md section 5)
   double sectionX = 1.38;  // Froude section x (m) (Li & Zhao Eq. 15); -1: none (outside channel)
   double minDepth = 0;     // m; below it the section Froude number is not defined; 0 = auto
+  // h of Fr = v / sqrt(g h): the liquid surface height ("surface": the flow depth one sees, the
+  // pores of a saturated granular layer counted full) or the liquid volume depth ("volume").
+  // The two agree without particles.
+  std::string froudeDepth = "surface";
 };
 
 struct LiquidCase {

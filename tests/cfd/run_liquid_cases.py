@@ -259,6 +259,11 @@ def outflow(a, work):
         ok &= check(first <= 1e-9, f"{name}: initial volume = L H W to {first:.1e}")
         ok &= check(bal <= 1e-6, f"{name}: |V0 - V_domain - V_outlet - V_top| / V0 max {bal:.2e} "
                     f"over {len(s)} steps (<= 1e-6)")
+        # Without particles the liquid surface height (sum alpha V / area) is the liquid volume
+        # depth (sum eps_f alpha V / area, eps_f = 1): equal to round-off.
+        dh = max(abs(r["back_wall_surface_m"] - r["back_wall_depth_m"]) for r in s)
+        ok &= check(dh <= 1e-12, f"{name}: back-wall surface height = volume depth to {dh:.1e} m "
+                    "(<= 1e-12, no particles)")
         ok &= check(end["volume_outlet_m3"] >= 0.5 * v0, f"{name}: outlet volume at t = "
                     f"{end['time_s']:g} s is {end['volume_outlet_m3'] / v0:.3f} V0 (>= 0.5); in "
                     f"domain {end['volume_domain_m3'] / v0:.3f} V0, top "

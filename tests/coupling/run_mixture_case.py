@@ -10,6 +10,9 @@ Asserts (tolerances and why):
   - particles: remaining + deleted at outlet + deleted at top + lost = settled count, exactly;
   - the settled sample is saturated: initial liquid volume = pore volume of the box
     [0, L] x [0, settled height] x [0, W] within the particle volume of the cell row the top cuts;
+    its liquid surface at the back wall (sum alpha V / area, the paper's flow height) is the
+    settled height within that row's height, and the liquid volume depth lies below it by more
+    than 0.3 of the height (the grains' share, about 0.6);
   - mixflowExtract: mixture.h5 opens with h5py; /fields/alpha_s etc. have shape
     (windows, y bins, x bins) and units; the particle volume in the bins (alpha_s x bin volume,
     summed) equals the particles' volume N Vp at the window's snapshots to 1e-9 (exact split, the
@@ -120,6 +123,15 @@ def main():
           f"({(v0 / pore - 1) * 100:+.2f} %; bound from the cut cell row "
           f"{bound / pore * 100:.1f} %)")
     ok &= abs(v0 - pore) <= bound
+
+    # Flow height at the back wall: the liquid surface height (pores counted full) of the
+    # saturated sample is its settled height, within the cell row the top cuts (dy); the liquid
+    # volume depth is the pore part of it, below it by the grains' share of the column.
+    surf0 = float(liq[0]["back_wall_surface_m"])
+    depth0 = float(liq[0]["back_wall_depth_m"])
+    print(f"back wall at t = 0: liquid surface {surf0:.4f} m vs settled height {height:.4f} m "
+          f"(bound dy = {dy:.3f} m); liquid volume depth {depth0:.4f} m")
+    ok &= abs(surf0 - height) <= dy and depth0 < surf0 - 0.3 * height
 
     # mixflowExtract on the coupled case (issue 5 test 5).
     with open(os.path.join(case, "system", "extractDict"), "w") as f:
