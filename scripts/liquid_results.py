@@ -4,6 +4,9 @@
   liquid_results.py --calibrate CASE T
       prints the channel length whose outlet the water front of CASE (a W run in a long channel)
       reaches at time T: the bed front x_f(T), interpolated in the time series, to 0.01 m.
+  liquid_results.py --side-walls WORK OUT --command CMD
+      compares WORK/sidewalls-3d (case W as committed: 3-D, walls at z = 0 and W) with
+      WORK/sidewalls-2d (the same in 2-D, no side walls): side_walls.csv/.png/.json in OUT.
   liquid_results.py --make WORK OUT --channel-length LC --command CMD
       writes into OUT: fronts.csv/.png (W, HB, B), slumps_normalised.csv/.png (HB-I, B-I: X_f/L vs
       t/T), froude.csv/.png (Fr at x = 1.38 m vs t - t0), energies.png, regularisation.csv,
@@ -221,10 +224,63 @@ def make(work, out, lc, command):
     print(json.dumps({"subcritical_after_arrival_s": sub, "channel_length_m": lc}))
 
 
+def side_walls(work, out, command):
+    """Case W with and without side walls: fronts, Froude at 1.38 m, subcritical time, outflow."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    runs = {d: series(os.path.join(work, f"sidewalls-{d}")) for d in ("2d", "3d")}
+    res = {}
+    for d, rows in runs.items():
+        t0, ts = subcritical_after_arrival(rows)
+        out_t = first_time(rows, lambda r: r["volume_outlet_m3"] > 1e-3 * r["volume_domain_m3"])
+        res[d] = {"arrival_t0_s": t0,
+                  "subcritical_after_arrival_s": None if ts is None else round(ts - t0, 3),
+                  "front_m": {str(t): round(at(rows, "front_bed_m", t), 3)
+                              for t in (0.5, 1.0, 1.25)},
+                  "outflow_starts_s": out_t,
+                  "simulated_to_s": rows[-1]["time_s"]}
+    os.makedirs(out, exist_ok=True)
+    tgrid = [0.01 * k for k in range(0, 221)]
+    with open(os.path.join(out, "side_walls.csv"), "w") as f:
+        f.write("time_s,front_2d_m,front_3d_m,froude_2d,froude_3d\n")
+        for t in tgrid:
+            f.write(f"{t:.2f}," + ",".join(f"{at(runs[d], k, t):.4f}" for k in
+                                           ("front_bed_m", "section_froude")
+                                           for d in ("2d", "3d")).replace("nan", "") + "\n")
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for d, st in (("2d", "--"), ("3d", "-")):
+        rows, r = runs[d], res[d]
+        lab = "2-D (no side walls)" if d == "2d" else "3-D (walls at z = 0, W)"
+        ax[0].plot([q["time_s"] for q in rows], [q["front_bed_m"] for q in rows], st, label=lab)
+        ax[1].plot([q["time_s"] - r["arrival_t0_s"] for q in rows],
+                   [q["section_froude"] for q in rows], st,
+                   label=f"{lab}: subcritical after {r['subcritical_after_arrival_s']} s")
+    ax[0].set(xlabel="t (s)", ylabel="liquid front x_f (m)", title="Case W, 0.03 m cells")
+    ax[1].axhline(1, color="grey", lw=0.5)
+    ax[1].set(xlabel="t - t0 (s)", ylabel="Fr at x = 1.38 m", ylim=(0, 5),
+              title=f"paper: subcritical after {PAPER_SUBCRITICAL['W']} s")
+    for a in ax:
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "side_walls.png"), dpi=120)
+    plt.close(fig)
+    summary = {"command": command, "case": "W (cases/W: 0.03 m cells, channel 5.86 m), to 2.2 s",
+               "runs": {"2d": "dimensions 2 (one cell across W, no side walls)",
+                        "3d": "dimensions 3 (20 cells across W = 0.6 m, no-slip side walls)"},
+               "paper_subcritical_after_arrival_s": PAPER_SUBCRITICAL["W"], **res}
+    with open(os.path.join(out, "side_walls.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    print(json.dumps(res))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--calibrate", nargs=2, metavar=("CASE", "T"))
     p.add_argument("--make", nargs=2, metavar=("WORK", "OUT"))
+    p.add_argument("--side-walls", nargs=2, metavar=("WORK", "OUT"))
     p.add_argument("--channel-length", type=float)
     p.add_argument("--command", default="scripts/liquid_results.sh")
     a = p.parse_args()
@@ -232,8 +288,10 @@ def main():
         calibrate(a.calibrate[0], float(a.calibrate[1]))
     elif a.make:
         make(a.make[0], a.make[1], a.channel_length, a.command)
+    elif a.side_walls:
+        side_walls(a.side_walls[0], a.side_walls[1], a.command)
     else:
-        p.error("give --calibrate or --make")
+        p.error("give --calibrate, --make or --side-walls")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Pure-liquid results (issue 3) into results/pure_liquids/. Usage: scripts/liquid_results.sh [RANKS]
+# Pure-liquid results (issue 3) into results/pure_liquids/.
+# Usage: scripts/liquid_results.sh [RANKS] [side-walls]
 # Runs copies of cases/W, HB, B, HB-I, B-I in WORK (default /tmp/mixflow-liquid) at a fidelity this
 # machine manages (2-D: dimensions 2, one cell across the width; the cases themselves are 3-D):
 #   calibration  W in an 8 m channel: the time the water front reaches x fixes the channel length
@@ -8,7 +9,10 @@
 #   HB-I, B-I    cells H/20 and H/10 in their own channels, 5 s and 30 s
 #   cap-*        the regularisation: HB (as above) and the yield-slump test column with viscosity
 #                caps 1e2, 1e3, 1e4 (default), 1e5 Pa s
-# then scripts/liquid_results.py makes the plots, CSVs and summary.json. Finished runs (log with
+# then scripts/liquid_results.py makes the plots, CSVs and summary.json.
+# With side-walls only this runs: case W as committed (3-D, 0.03 m cells, no-slip walls at
+# z = 0 and W; 156 000 cells, about 45 min serial) and the same in 2-D, both to 2.2 s, and
+# liquid_results.py --side-walls compares them (side_walls.csv/.png/.json). Finished runs (log with
 # "End") are not run again; delete WORK/<run> to redo one. MIXFLOW_NO_BUILD=1 skips the build
 # (then MIXFLOW_BUILD names the build directory whose bin/ holds mixflowPrepare and mixflowFoam).
 set -euo pipefail
@@ -39,6 +43,23 @@ run() {
   (cd "$work/$r" && ./Allrun "$ranks" > log.Allrun 2>&1) ||
     { echo "run $r failed: see $work/$r/log.Allrun" >&2; exit 1; }
 }
+
+# Side walls: W in 3-D (as committed) against 2-D, same cells and channel.
+if [ "${2:-}" = side-walls ]; then
+  for d in 2 3; do
+    r=sidewalls-${d}d
+    if ! done_run "$r"; then
+      prepare "$r" W
+      sed -i -E "s/^dimensions +[0-9];/dimensions  $d;/" "$work/$r/system/cfdDict"
+      set_entry "$work/$r/system/controlDict" endTime 2.2
+      set_entry "$work/$r/system/controlDict" writeInterval 0.05
+      run "$r"
+    fi
+  done
+  /usr/bin/python3 "$root/scripts/liquid_results.py" --side-walls "$work" \
+    "$root/results/pure_liquids" --command "scripts/liquid_results.sh $ranks side-walls"
+  exit 0
+fi
 
 # 1. Channel-length calibration with W.
 if ! done_run calibration; then

@@ -177,6 +177,19 @@ def subcritical(s):
     return t0, (None if ts is None or t0 is None else ts - t0)
 
 
+def subcritical_volume_depth(s):
+    """t - t0 of the same rule with h = the liquid volume depth in Fr (froudeDepth volume), for a
+    run whose section_froude used the surface height; None if not available or never."""
+    if not s.liquid or "section_surface_m" not in s.liquid[0]:
+        return None
+    rows = [dict(r, section_froude=(r["section_velocity_m_s"] /
+                                    math.sqrt(9.81 * r["section_depth_m"])
+                                    if r["section_depth_m"] > 0 else math.nan))
+            for r in s.liquid]
+    t0, ts = subcritical_after_arrival(rows)
+    return None if t0 is None or ts is None else ts - t0
+
+
 def back_wall_key(s):
     """The series column of the flow height at the back wall: the liquid surface height
     (back_wall_surface_m, the pores of a saturated granular layer counted full: the paper's
@@ -595,12 +608,16 @@ def table(sc, law):
             if agree:
                 note = f"agrees within {max(0.1, 0.15 * paper):.2f} s (t0 = {t0:.2f} s; rule: Fr < 1 held {HOLD_S} s)"
             elif dt > paper:
-                note = (f"later than the paper: {fidelity(s)}; a flow without side-wall "
-                        "friction (2-D or periodic) decelerates less" if s.tier != "paper" else
-                        "later than the paper: check the section depth rule (minDepth) and the mesh")
+                note = (f"later than the paper: {fidelity(s)}" +
+                        ("; not side-wall friction: W in 3-D with walls turns subcritical when "
+                         "it does in 2-D (results/pure_liquids/side_walls.json)" if n == "W" else ""))
             else:
                 note = ("earlier than the paper: " + fidelity(s) +
                         ("; coarse cells smear the thinning tail at the section" if s.tier == "quick" else ""))
+            if n in MIXTURES:
+                alt = subcritical_volume_depth(s)
+                note += ("; h = liquid surface height (froudeDepth surface); with h = liquid "
+                         "volume depth: " + ("never" if alt is None else f"{alt:.2f} s"))
             rows.append(row(q, paper, round(dt, 2), s.tier, agree, note))
 
     # Front orders.

@@ -30,6 +30,7 @@ import report  # noqa: E402  (Scene and the report's derived numbers)
 from liquid_results import at  # noqa: E402
 
 TIMES = (0.5, 1.0, 1.5)
+SCALARS = ("arrival_at_1.38m_s", "subcritical_after_arrival_s", "energy_excess_J_per_m")
 
 
 def read(rows, key, label):
@@ -65,6 +66,10 @@ def observables(s):
     t0, sub = report.subcritical(s)
     out["arrival_at_1.38m_s"] = t0
     out["subcritical_after_arrival_s"] = sub
+    # The energy the run made (report.energy_excess): a scheme that is not converged in the
+    # tier's step or interval shows here first.
+    ex = report.energy_excess(s)
+    out["energy_excess_J_per_m"] = None if ex is None else ex["excess_J_per_m"]
     return out
 
 
@@ -91,7 +96,7 @@ def changes(base, other):
             b = base["observables"][tk].get(k)
             if v is not None and b is not None:
                 d.setdefault(tk, {})[k] = v - b
-    for k in ("subcritical_after_arrival_s", "arrival_at_1.38m_s"):
+    for k in SCALARS:
         a, b = other["observables"].get(k), base["observables"].get(k)
         d[k] = None if a is None or b is None else a - b
     return d
@@ -122,9 +127,11 @@ def markdown(res):
             ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(tk, {}).get(k) for t in tiers[1:]]
             lines.append(f"| {k} | {tk} | " + " | ".join(report.fmt(v) for v in vals) + " | " +
                          ", ".join(report.fmt(c) for c in ch) + " |")
-    for k in ("arrival_at_1.38m_s", "subcritical_after_arrival_s"):
+    for k in SCALARS:
         vals = [res["tiers"][t]["observables"].get(k) for t in tiers]
-        lines.append(f"| {k} | - | " + " | ".join(report.fmt(v) for v in vals) + " | |")
+        ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(k) for t in tiers[1:]]
+        lines.append(f"| {k} | - | " + " | ".join(report.fmt(v) for v in vals) + " | " +
+                     ", ".join(report.fmt(c) for c in ch if c is not None) + " |")
     pp = res.get("paper_physics_on_bench_geometry")
     if pp:
         lines += ["", "Paper modulus, DEM step and exchange interval on the bench's quick geometry "
