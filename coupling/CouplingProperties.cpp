@@ -16,7 +16,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
       "FoamFile",          "demScript",           "exchangeEvery",      "forceModels",
       "voidFractionModel", "interpolation",       "sourceDistribution", "voidfractionMin",
       "logEvery",          "dragRelaxationLimit", "maxVelocity",        "dragIntegration",
-      "dragFluidResponse"};
+      "dragFluidResponse", "dragCounterflowLimit"};
   for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
   for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
   d.allowOnly(allowed);
@@ -39,6 +39,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
   p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share", "continuity"});
   p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
+  p.dragCounterflowLimit = d.scalarOr("dragCounterflowLimit", 0.5, Range::closed(0.0, 1.0));
   p.maxVelocity = d.scalarOr("maxVelocity", 100.0, Range::positive());
   return p;
 }

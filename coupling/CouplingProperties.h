@@ -15,6 +15,8 @@
 //   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid
 //                                   // velocity the drag sees within an interval; see below)
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
+//   dragCounterflowLimit 0.5;       // held only: beta <= limit / c x m / T, c = (1 - eps) / eps
+//                                   // (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
 //   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B
 //   dividedCoeffs       { nShells 3; nDirections 16; }
@@ -57,6 +59,10 @@ struct CouplingProperties {
   // held only: the drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the
   // exchange interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
   double dragRelaxationLimit = 0.5;
+  // held only: also beta <= dragCounterflowLimit / c x m / T with c = (1 - eps_f) / eps_f of the
+  // particle's cell, so that c beta T / m stays below 1: the held drag's packed-bed counterflow
+  // bound (coupling/README.md, "Exchange interval"); 0 = no limit.
+  double dragCounterflowLimit = 0.5;
   // |U| above this (m/s) anywhere stops the run with the place and time (a diverging step).
   double maxVelocity = 100;
 

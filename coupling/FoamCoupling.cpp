@@ -641,8 +641,15 @@ void FoamCoupling::exchange() {
       // particle past the fluid velocity within one interval (unstable beyond 2 m / T), e.g. in a
       // capped yield-stress liquid near rest (mu up to viscosityCap). Limited to
       // dragRelaxationLimit x m / T, on both sides (action = reaction), counted in the log.
-      const double betaMax = dragRelaxationLimit_ * w.p.mass / exchangeInterval_;
-      if (dragRelaxationLimit_ > 0 && w.force.beta > betaMax) {
+      // Also c beta T / m <= dragCounterflowLimit: in a packed cell the next interval's drag
+      // pulls the grain towards the pore fluid's counterflow to this interval's compaction,
+      // c times the compaction velocity, two intervals late; in the slaved model
+      // v_k+1 = (1 - s) v_k - c s v_k-1 (s = beta T / m) that grows once c s > 1.
+      double sMax = dragRelaxationLimit_ > 0 ? dragRelaxationLimit_ : 1e300;
+      if (props_->dragCounterflowLimit > 0 && counterflow > 0)
+        sMax = std::min(sMax, props_->dragCounterflowLimit / counterflow);
+      const double betaMax = sMax * w.p.mass / exchangeInterval_;
+      if (sMax < 1e300 && w.force.beta > betaMax) {
         scale = betaMax / w.force.beta;
         w.force.beta = betaMax;
         limited += 1.0;
