@@ -68,7 +68,7 @@ def read_rows(path):
             try:
                 row[k] = float(v)
             except ValueError:
-                row[k] = v
+                row[k] = math.nan if v == "" else v  # a blank cell: no value at that time
         rows.append(row)
     return rows
 
