@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -361,7 +362,6 @@ void FoamCoupling::startDem() {
   // Time steps: one CFD step is exchangeEvery DEM steps, fixed.
   const double dtDem = link_->timeStep();
   exchangeInterval_ = props_->exchangeEvery * dtDem;
-  dragRelaxationLimit_ = props_->dragRelaxationLimit;
   const double dtCfd = runTime.deltaTValue();
   const double expected = props_->exchangeEvery * dtDem;
   if (std::abs(dtCfd - expected) > 1e-9 * expected)
@@ -645,11 +645,12 @@ void FoamCoupling::exchange() {
       // pulls the grain towards the pore fluid's counterflow to this interval's compaction,
       // c times the compaction velocity, two intervals late; in the slaved model
       // v_k+1 = (1 - s) v_k - c s v_k-1 (s = beta T / m) that grows once c s > 1.
-      double sMax = dragRelaxationLimit_ > 0 ? dragRelaxationLimit_ : 1e300;
+      constexpr double kOff = std::numeric_limits<double>::infinity();
+      double sMax = props_->dragRelaxationLimit > 0 ? props_->dragRelaxationLimit : kOff;
       if (props_->dragCounterflowLimit > 0 && counterflow > 0)
         sMax = std::min(sMax, props_->dragCounterflowLimit / counterflow);
       const double betaMax = sMax * w.p.mass / exchangeInterval_;
-      if (sMax < 1e300 && w.force.beta > betaMax) {
+      if (w.force.beta > betaMax) {  // never with both limits off (betaMax infinite)
         scale = betaMax / w.force.beta;
         w.force.beta = betaMax;
         limited += 1.0;

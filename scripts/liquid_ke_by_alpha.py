@@ -11,25 +11,18 @@ their largest |U|. A large share at small alpha means that air velocities, carri
 mixture velocity, dominate the liquid's kinetic energy (coupling/README.md, "Exchange interval").
 """
 import os
-import re
 import sys
 
 import numpy as np
 
+sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "tests/cfd"))
+from foamcase import read_internal_field  # noqa: E402  (the tests' ASCII field reader)
 
-def read_field(path, vector):
-    text = open(path).read()
-    text = text[text.index("internalField"):]
-    m = re.search(r"nonuniform List<\w+>\s*(\d+)", text)
-    if not m:
-        sys.exit(f"{path}: internalField is not a nonuniform ASCII list")
-    n = int(m.group(1))
-    body = text[m.end():]
-    body = body[body.index("(") + 1:]
-    if vector:
-        vals = re.findall(r"\(([^()]*)\)", body)[:n]
-        return np.array([[float(x) for x in v.split()] for v in vals])
-    return np.array([float(x) for x in body.split(")")[0].split()[:n]])
+
+def read_field(path):
+    return np.array(read_internal_field(path), dtype=float)
 
 
 def main(argv):
@@ -38,9 +31,9 @@ def main(argv):
     case = argv[0]
     for t in argv[1:]:
         d = os.path.join(case, t)
-        u = read_field(os.path.join(d, "U"), True)
-        eps = read_field(os.path.join(d, "voidfraction"), False)
-        alpha = read_field(os.path.join(d, "alpha.liquid"), False)
+        u = read_field(os.path.join(d, "U"))
+        eps = read_field(os.path.join(d, "voidfraction"))
+        alpha = read_field(os.path.join(d, "alpha.liquid"))
         ke = eps * alpha * (u ** 2).sum(axis=1)
         speed = np.sqrt((u ** 2).sum(axis=1))
         print(f"{case} t = {t}:")

@@ -183,7 +183,7 @@ def subcritical_volume_depth(s):
     if not s.liquid or "section_surface_m" not in s.liquid[0]:
         return None
     rows = [dict(r, section_froude=(r["section_velocity_m_s"] /
-                                    math.sqrt(9.81 * r["section_depth_m"])
+                                    math.sqrt(G * r["section_depth_m"])
                                     if r["section_depth_m"] > 0 else math.nan))
             for r in s.liquid]
     t0, ts = subcritical_after_arrival(rows)
