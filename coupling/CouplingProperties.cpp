@@ -12,11 +12,14 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   CouplingProperties p;
   p.dict = Dictionary::readFile(file);
   const Dictionary& d = p.dict;
-  std::vector<std::string> allowed = {
-      "FoamFile",          "demScript",           "exchangeEvery",      "forceModels",
-      "voidFractionModel", "interpolation",       "sourceDistribution", "voidfractionMin",
-      "logEvery",          "dragRelaxationLimit", "maxVelocity",        "dragIntegration",
-      "dragFluidResponse", "dragCounterflowLimit"};
+  std::vector<std::string> allowed = {"FoamFile",           "demScript",
+                                      "exchangeEvery",      "forceModels",
+                                      "voidFractionModel",  "interpolation",
+                                      "sourceDistribution", "voidfractionMin",
+                                      "logEvery",           "dragRelaxationLimit",
+                                      "maxVelocity",        "dragIntegration",
+                                      "dragFluidResponse",  "dragCounterflowLimit",
+                                      "pressureCoupling"};
   for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
   for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
   d.allowOnly(allowed);
@@ -38,6 +41,14 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
   p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
   p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share", "continuity"});
+  // Default: mixture wherever it applies (implicit drag without a dragFluidResponse mode).
+  const bool mixtureApplies = p.dragIntegration == "implicit" && p.dragFluidResponse == "none";
+  p.pressureCoupling =
+      d.wordOr("pressureCoupling", mixtureApplies ? "mixture" : "fluid", {"fluid", "mixture"});
+  if (p.pressureCoupling == "mixture" &&
+      (p.dragIntegration != "implicit" || p.dragFluidResponse != "none"))
+    d.fail("pressureCoupling",
+           "'mixture' needs dragIntegration implicit and dragFluidResponse none");
   p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
   p.dragCounterflowLimit = d.scalarOr("dragCounterflowLimit", 0.5, Range::closed(0.0, 1.0));
   p.maxVelocity = d.scalarOr("maxVelocity", 100.0, Range::positive());

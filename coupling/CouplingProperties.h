@@ -14,6 +14,9 @@
 //                                   // held: the exchange's drag held over the interval
 //   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid
 //                                   // velocity the drag sees within an interval; see below)
+//   pressureCoupling    mixture;    // fluid | mixture (implicit, dragFluidResponse none only;
+//                                   // the default there, fluid otherwise): the pressure equation
+//                                   // carries the grains' drag response
 //   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
 //   dragCounterflowLimit 0.5;       // held only: beta <= limit / c x m / T, c = (1 - eps) / eps
 //                                   // (0: no limit)
@@ -56,6 +59,15 @@ struct CouplingProperties {
   // flux is held over the interval instead of U, so the pore fluid counterflows a compacting bed
   // within the interval as the fluid step's continuity will make it (DemLink.h).
   std::string dragFluidResponse = "none";
+  // fluid: the fluid step's continuity sees the grains' displacement over the DEM interval just
+  // run, and the next interval's drag uses the fluid as it was before that step.
+  // mixture (implicit drag, dragFluidResponse none): the next interval's drag uses the fluid
+  // after its step (sampled again), and that step's pressure equation already counts the share
+  // sigma = 1 - (1 - exp(-s)) / s (s = beta T / m) of each grain's volume that the implicit drag
+  // will carry with the new fluid velocity over the interval: mixture continuity, so a packed bed
+  // in a viscous liquid compacts only as fast as its pore liquid can leave (partial elimination;
+  // coupling/README.md, "Pressure coupling").
+  std::string pressureCoupling = "mixture";
   // held only: the drag coefficient of a particle is limited to dragRelaxationLimit x m / T (T the
   // exchange interval), so the held drag never pushes it past the fluid velocity; 0 = no limit.
   double dragRelaxationLimit = 0.5;

@@ -156,6 +156,20 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
   }
 }
 
+void DemLink::setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has) {
+  if (mode_ != DragIntegration::implicit)
+    throw std::logic_error("coupling: setFluidVelocity needs dragIntegration implicit");
+  if (session_.step() != intervalStart_)
+    throw std::logic_error("coupling: setFluidVelocity after the interval started");
+  double** s = state();
+  const int n = session_.lammps()->atom->nlocal;
+  if (static_cast<int>(U.size()) != n || static_cast<int>(has.size()) != n)
+    throw std::runtime_error("coupling: velocity count differs from the local particle count");
+  for (int i = 0; i < n; ++i)
+    if (has[i])
+      for (int k = 0; k < 3; ++k) s[i][kU + k] = U[i][k];
+}
+
 bool DemLink::periodicZ(double& lo, double& hi) const {
   const LAMMPS_NS::Domain* d = session_.lammps()->domain;
   lo = d->boxlo[2];

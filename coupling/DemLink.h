@@ -80,6 +80,9 @@ class DemLink {
   void push(const std::vector<Vec3>& forces);
   // implicit: the next interval's beta, U and explicit force; resets the impulses.
   void pushImplicit(const std::vector<AppliedDrag>& next);
+  // implicit, after pushImplicit and before the interval runs: replaces the fluid velocity U of
+  // local particle i (same order as the last pull) where has[i].
+  void setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has);
 
   DragIntegration mode() const { return mode_; }
   double timeStep() const;

@@ -163,8 +163,9 @@ enum Total {
 
 FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidfraction,
                            Foam::volScalarField& Ksl, Foam::volVectorField& Us,
-                           Foam::volVectorField& fSource, const Foam::volVectorField& U,
-                           const Foam::volScalarField& rho, const Foam::volScalarField& p,
+                           Foam::volVectorField& fSource, Foam::volScalarField& solidResponse,
+                           const Foam::volVectorField& U, const Foam::volScalarField& rho,
+                           const Foam::volScalarField& p,
                            const Foam::incompressibleTwoPhaseMixture& mixture,
                            const Foam::incompressibleTurbulenceModel& turbulence,
                            const Foam::uniformDimensionedVectorField& g,
@@ -174,6 +175,7 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
       Ksl_(Ksl),
       Us_(Us),
       fSource_(fSource),
+      solidResponse_(solidResponse),
       U_(U),
       rho_(rho),
       p_(p),
@@ -252,8 +254,8 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
              << " s), drag integration " << props_->dragIntegration.c_str() << ", interpolation "
              << props_->interpolation.c_str() << ", reaction distribution "
              << props_->sourceDistribution.c_str() << ", voidfractionMin " << voidfractionMin_
-             << Foam::nl << "  void fraction: " << voidFractionModel_->describe().c_str()
-             << Foam::nl;
+             << ", pressure coupling " << props_->pressureCoupling.c_str() << Foam::nl
+             << "  void fraction: " << voidFractionModel_->describe().c_str() << Foam::nl;
   for (const auto& m : forceModels_) Foam::Info << "  force: " << m->describe().c_str() << Foam::nl;
   Foam::Info << Foam::endl;
 
@@ -415,6 +417,18 @@ double FoamCoupling::fluidSideScale(double beta, double mass) const {
   return 1.0 / (1.0 + beta * exchangeInterval_ / mass);
 }
 
+namespace {
+// pressureCoupling mixture: the share sigma of a particle's displacement over the next interval
+// that follows the fluid velocity U it is dragged towards. The implicit drag relaxes the slip
+// v - U as exp(-s t / T), s = beta T / m, so the mean velocity over the interval is
+// U + g (v0 - U), g = (1 - exp(-s)) / s, and sigma = 1 - g (0 for s -> 0, 1 for s -> inf).
+double responseShare(double beta, double mass, double interval) {
+  const double s = mass > 0 ? beta * interval / mass : 0.0;
+  if (!(s > 1e-12)) return 0.0;
+  return 1.0 + std::expm1(-s) / s;
+}
+}  // namespace
+
 // The fluid's acceleration over its last step by its own forces (pressure, viscous stress,
 // gravity, surface tension, advection), the particles' force removed: dU/dt - S / (eps rho),
 // S = Ksl (Us - U) + (explicit drag reaction) the particles' drag per volume in that step (their
@@ -450,8 +464,9 @@ constexpr int kR1 = 10;      // owner index, tag, x(3), v(3), radius, mass
 constexpr int kR2Head = 16;  // owner index, work index, local inside volume, holds centre,
                              // beta, F_explicit(3), U_i(3), 1 / m_f, fluid's own acceleration(3),
                              // counterflow factor c; then 3 per force model
-constexpr int kR3 = 16;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
-                             // holds centre, drag given explicitly(3) (part of F_explicit)
+constexpr int kR3 = 17;      // work index, beta, F_explicit(3), U_i(3), v(3), inside total,
+                             // holds centre, drag given explicitly(3) (part of F_explicit),
+                             // sigma (pressureCoupling mixture)
 
 // Does the sphere (centre x, radius r) touch the box [lo, hi]?
 bool sphereTouchesBox(const Vec3& x, double r, const double* lo, const double* hi) {
@@ -490,7 +505,9 @@ void FoamCoupling::exchange() {
   const bool implicitDrag = link_->mode() == DemLink::DragIntegration::implicit;
   const bool fluidShare = implicitDrag && props_->dragFluidResponse == "share";
   const bool continuity = implicitDrag && props_->dragFluidResponse == "continuity";
+  const bool mixturePressure = props_->pressureCoupling == "mixture";
   if (fluidShare) updateFluidOwnAcceleration();
+  samples_.clear();
   std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
   if (implicitDrag) link_->pullApplied(applied);
 
@@ -603,6 +620,7 @@ void FoamCoupling::exchange() {
     if (divTauInt.valid()) f.divTau = toVec(divTauInt->interpolate(x, c));
     if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
     w.Ui = f.U;
+    if (mixturePressure) samples_.push_back(Sample{w.owner, w.ownerIndex, w.p.x, c});
     if (fluidShare) {
       // The particle's share of its cell's fluid: the cell's fluid mass rho eps V_c split over
       // the particle volume (1 - eps) V_c in it. A cell without particle volume: no response.
@@ -727,12 +745,14 @@ void FoamCoupling::exchange() {
     }
   std::vector<Vec3> forces(implicitDrag ? 0 : nOwn);
   std::vector<AppliedDrag> next(implicitDrag ? nOwn : 0);
+  sampleHost_.assign(nOwn, -1);
   double remote = 0;
   for (size_t i = 0; i < nOwn; ++i) {
     Owned& o = owned[i];
     assembly_->countParticle(own[i], std::max(0.0, own[i].volume() - o.inside), o.host >= 0);
     if (o.host < 0) continue;  // centre in no cell of the mesh: no fluid force
     if (o.host != rank) remote += 1;
+    sampleHost_[i] = o.host;
     o.reaction = o.force;
     o.reactionU = o.Ui;
     o.reactionV = own[i].v;
@@ -776,6 +796,8 @@ void FoamCoupling::exchange() {
   for (size_t i = 0; i < nOwn; ++i) {
     const Owned& o = owned[i];
     if (o.host < 0) continue;
+    const double sigma =
+        mixturePressure ? responseShare(o.force.beta, own[i].mass, exchangeInterval_) : 0.0;
     bool hostDone = false;
     for (const Part& part : o.parts) {
       const bool isHost = part.centre && part.rank == o.host && !hostDone;
@@ -788,7 +810,7 @@ void FoamCoupling::exchange() {
           buf[part.rank].end(),
           {static_cast<double>(part.workIndex), f.beta, f.explicitForce.x, f.explicitForce.y,
            f.explicitForce.z, U.x, U.y, U.z, v.x, v.y, v.z, o.inside, isHost ? 1.0 : 0.0,
-           o.explicitDrag.x, o.explicitDrag.y, o.explicitDrag.z});
+           o.explicitDrag.x, o.explicitDrag.y, o.explicitDrag.z, sigma});
     }
   }
   in = exchangeBuffers(buf, MPI_COMM_WORLD);
@@ -803,6 +825,7 @@ void FoamCoupling::exchange() {
       p.v = Vec3(r[8], r[9], r[10]);
       assembly_->depositReaction(p, w.cells, f, Vec3(r[5], r[6], r[7]), r[11], r[12] > 0.5, Ucell,
                                  Vec3(r[13], r[14], r[15]));
+      if (r[16] > 0) assembly_->depositResponse(w.cells, r[16]);
     }
   assembly_->finishSources(Ucell);
 
@@ -814,10 +837,13 @@ void FoamCoupling::exchange() {
     const auto& aK = assembly_->Ksl();
     const auto& aUs = assembly_->Us();
     const auto& aF = assembly_->fSource();
+    Foam::scalarField& psi = solidResponse_.primitiveFieldRef();
+    const auto& aPsi = assembly_->solidResponse();
     forAll(K, c) {
       K[c] = aK[c];
       Usf[c] = toFoam(aUs[c]);
       fs[c] = toFoam(aF[c]);
+      psi[c] = aPsi[c];
     }
   }
 
@@ -854,6 +880,37 @@ void FoamCoupling::exchange() {
                   MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   log(MPI_Wtime() - wall0);
   ++exchanges_;
+}
+
+// pressureCoupling mixture: the fluid step just taken counted on each particle's drag pulling it
+// towards the new fluid velocity over the next interval; give the drag that velocity. One
+// point-to-point round: the rank holding a particle's centre samples U there (same place and
+// scheme as the exchange) and sends it to the particle's DEM owner, which keeps the sample of
+// the rank the exchange took the force from. No DEM step runs between the exchange and this,
+// so the owners' local particle order is the exchange's.
+void FoamCoupling::resampleFluidVelocity() {
+  if (props_->pressureCoupling != "mixture") return;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  Foam::autoPtr<Foam::interpolation<Foam::vector>> Uint =
+      Foam::interpolation<Foam::vector>::New(Foam::word(props_->interpolation), U_);
+  std::vector<std::vector<double>> buf(size);
+  for (const Sample& s : samples_) {
+    const Foam::vector u = Uint->interpolate(Foam::point(s.x.x, s.x.y, s.x.z), s.cell);
+    buf[s.owner].insert(buf[s.owner].end(),
+                        {static_cast<double>(s.ownerIndex), u.x(), u.y(), u.z()});
+  }
+  const std::vector<std::vector<double>> in = exchangeBuffers(buf, MPI_COMM_WORLD);
+  std::vector<Vec3> Unew(sampleHost_.size());
+  std::vector<char> has(sampleHost_.size(), 0);
+  for (int q = 0; q < size; ++q)
+    for (size_t k = 0; k + 4 <= in[q].size(); k += 4) {
+      const size_t i = static_cast<size_t>(in[q][k]);
+      if (i >= sampleHost_.size() || sampleHost_[i] != q) continue;
+      Unew[i] = Vec3(in[q][k + 1], in[q][k + 2], in[q][k + 3]);
+      has[i] = 1;
+    }
+  link_->setFluidVelocity(Unew, has);
 }
 
 void FoamCoupling::writeLogHeader() {

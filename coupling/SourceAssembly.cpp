@@ -18,6 +18,7 @@ void SourceAssembly::reset() {
   solid_.assign(n, 0.0);
   voidfraction_.assign(n, 1.0);
   ksl_.assign(n, 0.0);
+  response_.assign(n, 0.0);
   kslUs_.assign(n, Vec3());
   us_.assign(n, Vec3());
   fSource_.assign(n, Vec3());
@@ -93,8 +94,14 @@ void SourceAssembly::depositReaction(const ParticleState& p, const ParticleCells
   }
 }
 
+void SourceAssembly::depositResponse(const ParticleCells& localCells, double sigma) {
+  for (const auto& cv : localCells.volumes)
+    response_.at(cv.first) += sigma * cv.second / volumes_[cv.first];
+}
+
 void SourceAssembly::finishSources(const std::vector<Vec3>& Ucell) {
   for (size_t c = 0; c < volumes_.size(); ++c) {
+    response_[c] = std::min(response_[c], 1.0 - voidfraction_[c]);
     us_[c] = ksl_[c] > 0 ? (1.0 / ksl_[c]) * kslUs_[c] : Vec3();
     totals_.forceOnFluid += volumes_[c] * (ksl_[c] * (us_[c] - Ucell[c]) + fSource_[c]);
   }

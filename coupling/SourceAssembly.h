@@ -66,6 +66,11 @@ class SourceAssembly {
                        bool holdsCentre, const std::vector<Vec3>& Ucell,
                        const Vec3& explicitDrag = Vec3());
   void finishSources(const std::vector<Vec3>& Ucell);
+  // Pressure coupling `mixture`: the drag-slaved solid fraction psi_c = sum_i sigma_i V_ic / V_c
+  // of the parts of particle i in this rank's cells (sigma_i in [0, 1]); capped at 1 - eps_f by
+  // finishSources (a clipped cell carries no more solid than eps_f leaves).
+  void depositResponse(const ParticleCells& localCells, double sigma);
+  const std::vector<double>& solidResponse() const { return response_; }
 
   const std::vector<double>& Ksl() const { return ksl_; }
   const std::vector<Vec3>& Us() const { return us_; }
@@ -79,7 +84,7 @@ class SourceAssembly {
   std::vector<double> volumes_;
   double voidfractionMin_;
   Distribution distribution_;
-  std::vector<double> solid_, voidfraction_, ksl_;
+  std::vector<double> solid_, voidfraction_, ksl_, response_;
   std::vector<Vec3> kslUs_, us_, fSource_, fDrag_;
   ExchangeTotals totals_;
 };

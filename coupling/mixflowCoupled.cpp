@@ -11,7 +11,10 @@
 //   1. DEM runs exchangeEvery steps with the fluid forces of the last exchange held constant;
 //   2. exchange at the particles' new positions: eps_f(t + dt), forces from the fluid at t
 //      (the particles' forces for the next interval, the fluid's Ksl/Us/fSource for this step);
-//   3. the fluid step (PIMPLE) with those fields.
+//   3. the fluid step (PIMPLE) with those fields;
+//   4. pressureCoupling mixture (the implicit drag's default): the fluid velocity the next
+//      interval's drag holds is sampled again from the fluid at t + dt, whose pressure equation
+//      counted on the grains following it (coupling/README.md, "Pressure coupling").
 // Before the loop one exchange sets eps_f(0) and the first interval's forces.
 //
 // MPI: LIGGGHTS needs MPI; OpenFOAM initialises it only with -parallel, so a serial run calls
@@ -63,8 +66,9 @@ int runCoupled(int argc, char* argv[]) {
                          << exit(FatalError);
   }
 
-  mixflow::coupling::FoamCoupling coupling(mesh, voidfraction, Ksl, Us, fSource, U, rho, p, mixture,
-                                           turbulence(), g, voidfractionMin, viscousStress);
+  mixflow::coupling::FoamCoupling coupling(mesh, voidfraction, Ksl, Us, fSource, solidResponse, U,
+                                           rho, p, mixture, turbulence(), g, voidfractionMin,
+                                           viscousStress);
   coupling.exchange();  // eps_f at the start time, forces for the first DEM interval
   // The particles were there before the start: eps_f(0) is also the old-time level (otherwise
   // d(eps_f)/dt of the start would see the change from the field read at construction).
@@ -125,6 +129,7 @@ int runCoupled(int argc, char* argv[]) {
 #include "fluidStep.H"
     // clang-format on
     coupling.checkFluid();
+    coupling.resampleFluidVelocity();  // pressureCoupling mixture: the next interval's U
 
     runTime.write();
     if (monitor) monitor->afterStep();

@@ -2,17 +2,20 @@
 """The speed/accuracy trade of one scene across fidelity tiers (issue 6; docs/suite.md).
 
 usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/reference]
+                     [--times 0.1,0.2,0.3,0.5,1,1.5]
                      [--paper-cost results/li_zhao_2018/cost_paper.json]
                      [--paper-physics results/bench/coupled_vs_dry_paper_modulus.json]
                      [--out results/li_zhao_2018]
 
 For each tier whose run of the scene finished (scripts/suite.py writes WORK/<scene>/.done): the
 wall time, ranks and core-seconds per simulated second, and the observables of the report at
-t = 0.5, 1.0 and 1.5 s (fronts, the grains' released potential energy and kinetic energy per
-metre of width, the liquid's E_fc, the back-wall depth / H, the subcritical time). Then how far
-each observable moves from the cheapest tier to each dearer one. The paper tier cannot run here
-(26 core-hours per mixture): its row is the measured cost per simulated second and the
-extrapolated core-hours (scripts/suite.py --tier paper), and, if given, the bench run with the
+the --times (fronts, the grains' released potential energy and kinetic energy per metre of
+width, the liquid's E_fc, the back-wall height / H, the subcritical time). Then how far each
+observable moves from each tier to the next one listed (list them from cheapest to dearest). A
+short window (cases/tiers/paper-window: the paper's stiffness and steps, 0.3 s) has rows up to
+its end only. The full paper tier cannot run here (26 core-hours per mixture): its row is the
+measured cost per simulated second and the extrapolated core-hours (scripts/suite.py --tier
+paper), and, if given, the bench run with the
 paper's modulus, DEM step and exchange interval on the quick bench geometry
 (bench/coupled_vs_dry.py --young-modulus-factor 1 --dem-step 5e-7 --exchange-every 100).
 Writes OUT/tier_trade.json and OUT/tier_trade.md.
@@ -29,7 +32,7 @@ sys.path.insert(0, HERE)
 import report  # noqa: E402  (Scene and the report's derived numbers)
 from liquid_results import at  # noqa: E402
 
-TIMES = (0.5, 1.0, 1.5)
+TIMES = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5)  # default --times
 SCALARS = ("arrival_at_1.38m_s", "subcritical_after_arrival_s", "energy_excess_J_per_m")
 
 
@@ -38,13 +41,13 @@ def read(rows, key, label):
     return at(rows, key, min(label, rows[-1]["time_s"]))
 
 
-def observables(s):
-    """Observables of one finished scene at TIMES (a time the run does not reach is left out)."""
+def observables(s, times):
+    """Observables of one finished scene at times (a time the run does not reach is left out)."""
     out = {}
     pe = report.particle_energies(s)
     efc = report.e_fc(s)
     t_end = s.t_end()
-    for label in TIMES:
+    for label in times:
         # A run that ended within 0.01 s of a time (endTime 1.5 s stops at 1.4994 s) counts as
         # reaching it, read at its last row.
         if t_end is None or t_end < label - 0.01:
@@ -73,7 +76,7 @@ def observables(s):
     return out
 
 
-def tier_row(work, scene):
+def tier_row(work, scene, times):
     s = report.Scene(work, scene)
     if not s.done:
         return None
@@ -83,7 +86,7 @@ def tier_row(work, scene):
     return {"work": work, "tier": s.tier, "width_m": s.width, "wall_s": done["wall_s"],
             "ranks": done["ranks"], "simulated_s": sim,
             "core_s_per_simulated_s": done["wall_s"] * done["ranks"] / sim,
-            "observables": observables(s)}
+            "observables": observables(s, times)}
 
 
 def changes(base, other):
@@ -119,26 +122,28 @@ def markdown(res):
                      f"({p['core_hours']:.1f} core-h for the scene) |")
     lines += ["", "| observable | t | " + " | ".join(tiers) + " | change |",
               "|---|---|" + "---|" * (len(tiers) + 1)]
-    base = tiers[0]
-    for tk in [f"{t:g}s" for t in TIMES]:
+    steps = [f"{b}_minus_{a}" for a, b in zip(tiers, tiers[1:])]
+    for tk in [f"{t:g}s" for t in res["times_s"]]:
         keys = sorted({k for t in tiers for k in res["tiers"][t]["observables"].get(tk, {})})
         for k in keys:
             vals = [res["tiers"][t]["observables"].get(tk, {}).get(k) for t in tiers]
-            ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(tk, {}).get(k) for t in tiers[1:]]
+            ch = [res["changes"].get(st, {}).get(tk, {}).get(k) for st in steps]
             lines.append(f"| {k} | {tk} | " + " | ".join(report.fmt(v) for v in vals) + " | " +
                          ", ".join(report.fmt(c) for c in ch) + " |")
     for k in SCALARS:
         vals = [res["tiers"][t]["observables"].get(k) for t in tiers]
-        ch = [res["changes"].get(f"{t}_minus_{base}", {}).get(k) for t in tiers[1:]]
+        ch = [res["changes"].get(st, {}).get(k) for st in steps]
         lines.append(f"| {k} | - | " + " | ".join(report.fmt(v) for v in vals) + " | " +
-                     ", ".join(report.fmt(c) for c in ch if c is not None) + " |")
+                     ", ".join(report.fmt(c) for c in ch) + " |")
     pp = res.get("paper_physics_on_bench_geometry")
     if pp:
         lines += ["", "Paper modulus, DEM step and exchange interval on the bench's quick geometry "
                   f"(`{pp['command']}`): see the JSON; it answers what the softening and the "
                   "interval do, not what the full-width scene gives."]
-    lines += ["", "Changes are dearer tier minus the first tier listed. Energies per metre of width "
-              "(the tiers' slices differ in width)."]
+    lines += ["", "Change: each tier minus the one listed before it (" + ", ".join(
+        f"{b} - {a}" for a, b in zip(tiers, tiers[1:])) + "); '-' where either lacks the "
+        "value (a window ends before the time). Energies per metre of width (the tiers' "
+        "slices differ in width)."]
     return "\n".join(lines) + "\n"
 
 
@@ -147,21 +152,24 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scene", default="HB+P")
     ap.add_argument("--tiers", default="quick=runs/quick,reference=runs/reference")
+    ap.add_argument("--times", default=",".join(f"{t:g}" for t in TIMES),
+                    help="comma-separated times (s) of the observables")
     ap.add_argument("--paper-cost", default="results/li_zhao_2018/cost_paper.json")
     ap.add_argument("--paper-physics", help="a bench/coupled_vs_dry.py JSON run at the paper's "
                     "modulus and steps")
     ap.add_argument("--out", default="results/li_zhao_2018")
     a = ap.parse_args(argv)
-    res = {"scene": a.scene, "tiers": {}, "changes": {},
+    times = [float(t) for t in a.times.split(",")]
+    res = {"scene": a.scene, "times_s": times, "tiers": {}, "changes": {},
            "command": " ".join(["python3 scripts/tier_trade.py"] + (argv or sys.argv[1:]))}
     for spec in a.tiers.split(","):
         name, work = spec.split("=")
-        res["tiers"][name] = tier_row(work, a.scene)
+        res["tiers"][name] = tier_row(work, a.scene, times)
     done = [t for t in res["tiers"] if res["tiers"][t]]
     if not done:
         sys.exit(f"tier_trade.py: no finished {a.scene} in {a.tiers}")
-    for t in done[1:]:
-        res["changes"][f"{t}_minus_{done[0]}"] = changes(res["tiers"][done[0]], res["tiers"][t])
+    for lo, hi in zip(done, done[1:]):
+        res["changes"][f"{hi}_minus_{lo}"] = changes(res["tiers"][lo], res["tiers"][hi])
     if a.paper_cost and os.path.isfile(a.paper_cost):
         with open(a.paper_cost) as f:
             cost = json.load(f)

@@ -226,11 +226,17 @@ def add_parallel_args(ap):
 def add_fluid_response_arg(ap):
     ap.add_argument("--drag-fluid-response", default="none", choices=("none", "share", "continuity"),
                     help="couplingProperties dragFluidResponse (implicit drag)")
+    ap.add_argument("--pressure-coupling", choices=("fluid", "mixture"),
+                    help="couplingProperties pressureCoupling (default: the code's, mixture for "
+                         "the implicit drag without dragFluidResponse, fluid otherwise)")
 
 
 def fluid_response_entry(a):
-    """The couplingProperties line for --drag-fluid-response."""
-    return f"dragFluidResponse {a.drag_fluid_response};\n"
+    """The couplingProperties lines for --drag-fluid-response and --pressure-coupling."""
+    text = f"dragFluidResponse {a.drag_fluid_response};\n"
+    if a.pressure_coupling:
+        text += f"pressureCoupling {a.pressure_coupling};\n"
+    return text
 
 
 def read_exchange_log(case):

@@ -19,12 +19,18 @@ Asserts (tolerances and why):
     snapshot mean of a count that does not change while nothing leaves; the grid starts one radius
     behind the back wall and below the floor, because the grains there overlap the walls by their
     contact deflection: 6e-7 and 1.4e-7 of the volume).
+With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
+(couplingProperties entries), the same checks run on that variant; --grain-energy-max E also
+asserts the grains' energy budget: their kinetic energy never exceeds the potential energy they
+have released by more than E joules (a closed collapse only dissipates; E covers the elastic
+energy of the settled contacts that the restart releases).
 """
 
 import argparse
 import csv
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -51,6 +57,11 @@ def main():
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--end", type=float, default=0.3)
+    ap.add_argument("--liquid-case", help="take the liquid block of cases/NAME's sceneProperties")
+    ap.add_argument("--couple", action="append", default=[], metavar="ENTRY=VALUE",
+                    help="a couplingProperties entry of the run (repeatable)")
+    ap.add_argument("--grain-energy-max", type=float,
+                    help="J: bound of max_t [KE_p(t) - (PE_p(0) - PE_p(t))]")
     ap.add_argument("--divergence", action="store_true",
                     help="instead: maxVelocity 1 m/s must stop the run with the place and time, "
                          "keeping the outputs written so far (issue 4 test 6)")
@@ -63,6 +74,25 @@ def main():
                     ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*",
                                                   "processor*", "[0-9]*"))
     fc.set_entry(os.path.join(case, "system/controlDict"), "endTime", repr(a.end))
+    if a.liquid_case:
+        # The liquid block (from "liquid" at a line start to its closing brace at a line start)
+        # of the other case replaces this one's; both are this repository's case files.
+        def liquid_block(path):
+            text = open(path).read()
+            m = re.search(r"^liquid\b.*?^\}\n", text, re.M | re.S)
+            if not m:
+                fc.fail(f"no liquid block in {path}")
+            return text, m
+        scene_path = os.path.join(case, "constant", "sceneProperties")
+        text, m = liquid_block(scene_path)
+        _, src = liquid_block(os.path.join(a.root, "cases", a.liquid_case, "constant",
+                                           "sceneProperties"))
+        with open(scene_path, "w") as f:
+            f.write(text[:m.start()] + src.group(0) + text[m.end():])
+    with open(os.path.join(case, "constant", "couplingProperties"), "a") as f:
+        for kv in a.couple:
+            key, value = kv.split("=", 1)
+            f.write(f"{key} {value};   // test option\n")
     env = dict(os.environ, MIXFLOW_ROOT=a.root, PATH=a.bindir + os.pathsep + os.environ["PATH"])
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
     if a.divergence:
@@ -106,6 +136,15 @@ def main():
           f"{last['particles']} + outlet {last['deleted_outlet']} + top {last['deleted_top']} + "
           f"lost {last['lost']} = {total}")
     ok &= total == n0 and float(last["time_s"]) >= a.end - 1e-3
+
+    # The grains' energy budget (kinetic = translational + rotational).
+    pe0 = float(dem[0]["pe_J"])
+    excess = max(float(x["ke_translational_J"]) + float(x["ke_rotational_J"]) -
+                 (pe0 - float(x["pe_J"])) for x in dem)
+    print(f"grains: largest kinetic energy beyond the released potential energy {excess:.4g} J"
+          + (f" (limit {a.grain_energy_max:g} J)" if a.grain_energy_max is not None else ""))
+    if a.grain_energy_max is not None:
+        ok &= excess <= a.grain_energy_max
 
     # Saturation: V_liquid(0) against the pore volume of the settled box.
     height = float(settled["height"])

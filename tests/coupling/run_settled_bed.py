@@ -40,6 +40,8 @@ def main():
     ap.add_argument("--models", default="DiFeliceDrag buoyancy viscousForce")
     ap.add_argument("--end", type=float, default=0.5)
     ap.add_argument("--layers", type=int, default=4)
+    ap.add_argument("--nu", type=float, default=1e-6,
+                    help="kinematic viscosity of the liquid (m2/s; water 1e-6)")
     ap.add_argument("--expect-fail", action="store_true",
                     help="negative control: pass only if the floor or pressure check fails")
     cc.add_parallel_args(ap)
@@ -72,7 +74,7 @@ forceModels ({a.models});
 voidFractionModel divided;
 """ + cc.fluid_response_entry(a)
     case = os.path.join(a.workdir, "case")
-    cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=1e-6,
+    cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=a.nu,
                   liquid_height=0.045, open_top=True)
     os.makedirs(os.path.join(case, "dem"), exist_ok=True)
     cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec, decomposepar=a.decomposepar,
