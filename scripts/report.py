@@ -564,6 +564,21 @@ def fidelity(*scenes):
     return "; ".join(sorted({FIDELITY.get((s.tier, s.content), "") for s in scenes if s.done} - {""}))
 
 
+def locked(s):
+    """Why a yield-stress mixture run with the converged drag barely moves ('' otherwise)."""
+    if s.name not in ("HB+P", "B+P") or not s.done:
+        return ""
+    try:
+        cp = suite.read_dict(os.path.join(s.dir, "constant", "couplingProperties"))
+    except (OSError, suite.DictError):
+        return ""
+    if cp.get("dragIntegration", "implicit") == "held":
+        return ""
+    return ("the converged drag (implicit, pressureCoupling mixture) holds the saturated column: "
+            "at the capped viscosity its pore liquid drains too slowly for the packing to dilate "
+            "(coupling/README.md, 'Pressure coupling')")
+
+
 def tiers_of(*scenes):
     return ",".join(sorted({s.tier or "?" for s in scenes if s.done})) or "-"
 
@@ -598,6 +613,8 @@ def table(sc, law):
         t0, dt = subcritical(s)
         if t0 is None:
             note = f"the liquid front never reached x = {SECTION_X} m before the run ended"
+            if locked(s):
+                note += "; " + locked(s)
             rows.append(row(q, paper, None, s.tier, False, note))
         elif dt is None:
             note = (f"still supercritical when the run ended at {s.t_end():.2f} s (t0 = {t0:.2f} s); "
@@ -640,7 +657,8 @@ def table(sc, law):
     got, where = order(["HB", "HB+P", "P"], mixed_front, 1.0)
     rows.append(row("front order HB, HB&P, P", "HB > HB&P > P", got, tiers_of(sc["HB"], sc["HB+P"], sc["P"]),
                     None if got is None else got == "HB > HB&P > P",
-                    where if got is None else f"liquid fronts (HB, HB&P) and granular front (P) {where}"))
+                    where if got is None else f"liquid fronts (HB, HB&P) and granular front (P) {where}"
+                    + ("; " + locked(sc["HB+P"]) if locked(sc["HB+P"]) else "")))
 
     # Runout law.
     tier = tiers_of(*(sc[n] for n in DRY_SERIES))
@@ -682,7 +700,8 @@ def table(sc, law):
             note = (f"agrees within 0.05 ({what})" if agree else
                     what + "; " + fidelity(s) +
                     ("; the column slumps more at the wall" if v < paper else
-                     "; the regularised liquid (cap 1e4 Pa s) and coarse cells hold more at the wall"))
+                     "; " + (locked(s) or "the regularised liquid (cap 1e4 Pa s) and coarse "
+                                          "cells hold more at the wall")))
             rows.append(row(q, paper, round(v, 3), s.tier, agree, note))
 
     # Savage interval of B&P and the ordering.
@@ -699,7 +718,8 @@ def table(sc, law):
         agree = iv is not None and abs(iv[0] - 0.28) <= 0.1 and abs(iv[1] - 1.1) <= 0.15
         rows.append(row(q, "0.28 – 1.1", ours, s.tier, agree,
                         f"column {sv[2]}" + ("" if agree else "; " + fidelity(s)
-                                             + ("; never above 0.1" if iv is None else ""))))
+                                             + ("; never above 0.1" if iv is None else "")
+                                             + ("; " + locked(s) if locked(s) else ""))))
     names = ["B+P", "P", "HB+P", "W+P"]
     have = [n for n in names if sc[n].done and savage(sc[n])]
     if len(have) == len(names):
