@@ -648,8 +648,9 @@ void FoamCoupling::exchange() {
       // grain towards that lagged counterflow. With s = beta T / m and c = (1 - eps) / eps one
       // exchange multiplies a compaction velocity by (1 - c s) / (1 + s): it grows, alternating
       // in sign, once s (c - 1) > 2 (coupling/README.md, "Exchange interval").
-      // dragFluidResponse continuity has the drag see that counterflow, which removes it.
-      if (f.voidfraction > 0 && !continuity) {
+      // dragFluidResponse continuity has the drag see that counterflow, which removes it;
+      // pressureCoupling mixture has the fluid step carry the grains' response (no such lag).
+      if (f.voidfraction > 0 && !continuity && !mixturePressure) {
         const double bound = w.force.beta * exchangeInterval_ / w.p.mass * (counterflow - 1) / 2;
         counterflowMax = std::max(counterflowMax, bound);
         if (bound > 1) counterflowUnstable += 1.0;
