@@ -6,7 +6,6 @@
 #include "FoamCoupling.H"
 #include "fvc.H"
 #include "interpolation.H"
-#include "meshSearch.H"
 #include "incompressibleTwoPhaseMixture.H"
 #include "incompressibleTurbulenceModel.H"
 // clang-format on
@@ -24,6 +23,7 @@
 
 #include "CouplingProperties.h"
 #include "DemLink.h"
+#include "FoamCellLocator.H"
 #include "ForceModel.h"
 #include "LiggghtsSession.h"
 #include "SourceAssembly.h"
@@ -37,89 +37,6 @@ namespace {
 
 Vec3 toVec(const Foam::vector& v) { return Vec3(v.x(), v.y(), v.z()); }
 Foam::vector toFoam(const Vec3& v) { return Foam::vector(v.x, v.y, v.z); }
-
-// Cell search in the local (sub)mesh, seeded with the particle's cell at the last exchange (or
-// the centre's cell for the points of a divided sphere): first the seed and its face neighbours
-// by the face-plane test (convex cells), then OpenFOAM's meshSearch walk from the seed, then its
-// octree search (no seed, or the walk failed). Points outside the local mesh's bounding box are
-// rejected at once. Each call returns one cell, so a point is never counted twice.
-class FoamCellLocator final : public CellLocator {
- public:
-  explicit FoamCellLocator(const Foam::fvMesh& mesh)
-      : mesh_(mesh),
-        search_(mesh, Foam::polyMesh::CELL_TETS),
-        bounds_(mesh.points(), false) {  // this rank's (sub)mesh, not reduced over ranks
-    // Inflate by a relative 1e-9 so that points on the outer boundary faces are not lost to the
-    // box test (the cell test decides them).
-    const Foam::vector span = bounds_.span();
-    const Foam::scalar tol = 1e-9 * Foam::mag(span);
-    bounds_.min() -= Foam::vector(tol, tol, tol);
-    bounds_.max() += Foam::vector(tol, tol, tol);
-  }
-
-  // A z-periodic particle box spanning the mesh's z range (a periodic slice of the width, 2-D or
-  // cyclic mesh): the part of a sphere beyond z = lo or hi belongs to the cells at the other side.
-  void setPeriodicZ(double lo, double hi) {
-    periodicZ_ = true;
-    zLo_ = lo;
-    zSpan_ = hi - lo;
-  }
-
-  long findCell(const Vec3& p, long seed) const override {
-    double z = p.z;
-    if (periodicZ_ && (z < zLo_ || z >= zLo_ + zSpan_)) {
-      z = zLo_ + std::fmod(z - zLo_, zSpan_);
-      if (z < zLo_) z += zSpan_;
-    }
-    const Foam::point q(p.x, p.y, z);
-    if (!bounds_.contains(q)) return -1;
-    if (seed >= 0 && seed < mesh_.nCells()) {
-      // Fast path: the seed cell and its face neighbours, by the face-plane test.
-      if (inConvexCell(q, seed)) return seed;
-      const Foam::cell& faces = mesh_.cells()[seed];
-      for (const Foam::label f : faces) {
-        if (!mesh_.isInternalFace(f)) continue;
-        const Foam::label nb =
-            mesh_.faceOwner()[f] == seed ? mesh_.faceNeighbour()[f] : mesh_.faceOwner()[f];
-        if (inConvexCell(q, nb)) return nb;
-      }
-      const Foam::label c = search_.findCell(q, seed, false);  // walk
-      if (c >= 0) return c;
-    }
-    return search_.findCell(q, -1, true);  // octree
-  }
-
-  // Point in a convex cell with planar faces: behind (or on) every face plane. Much cheaper than
-  // the tetrahedral test and exact for such cells (blockMesh/snappy hexes); a point on a shared
-  // face is given to the first cell tested, so it is still counted once.
-  bool inConvexCell(const Foam::point& q, Foam::label cell) const {
-    const Foam::cell& faces = mesh_.cells()[cell];
-    for (const Foam::label f : faces) {
-      const Foam::scalar s = (q - mesh_.faceCentres()[f]) & mesh_.faceAreas()[f];
-      if (mesh_.faceOwner()[f] == cell ? s > 0 : s < 0) return false;
-    }
-    return true;
-  }
-
-  // The sphere is inside a convex cell with planar faces if it is at least r behind every face.
-  bool sphereInsideCell(const Vec3& centre, double r, long cell) const override {
-    const Foam::cell& faces = mesh_.cells()[cell];
-    const Foam::point c(centre.x, centre.y, centre.z);
-    for (const Foam::label f : faces) {
-      Foam::vector n = mesh_.faceAreas()[f] / Foam::mag(mesh_.faceAreas()[f]);
-      if (mesh_.faceOwner()[f] != cell) n = -n;  // outward from `cell`
-      if (((mesh_.faceCentres()[f] - c) & n) < r) return false;
-    }
-    return true;
-  }
-
- private:
-  const Foam::fvMesh& mesh_;
-  Foam::meshSearch search_;
-  Foam::boundBox bounds_;
-  bool periodicZ_ = false;
-  double zLo_ = 0, zSpan_ = 1;
-};
 
 [[noreturn]] void fatal(const std::string& msg) {
   FatalErrorInFunction << msg.c_str() << Foam::exit(Foam::FatalError);
