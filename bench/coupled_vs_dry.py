@@ -168,7 +168,13 @@ def main():
         set_entry(os.path.join(case, "constant", "couplingProperties"), "exchangeEvery", str(n))
         timed([mf("mixflowPrepare"), "-case", case], case)
         timed(["blockMesh", "-case", case], case)
-        w_cpl, c_proc, out = timed([mf("mixflowCoupled"), "-case", case], case)
+        try:
+            w_cpl, c_proc, out = timed([mf("mixflowCoupled"), "-case", case], case)
+        except SystemExit as e:  # a diverged run is a result of the trade too: record it, go on
+            why = re.search(r"FOAM FATAL ERROR:\s*\n(.*)", str(e))
+            runs.append({"exchange_every": n, "failed": why.group(1) if why else str(e)[-500:]})
+            print(f"exchange every {n}: failed: {runs[-1]['failed']}", file=sys.stderr)
+            continue
         # The time loop alone (start-up, mesh and restart reading left out, as the dry side's
         # settling is); the whole process's CPU is kept too.
         m = re.search(r"time loop CPU ([0-9.eE+-]+) s", out)
@@ -188,18 +194,21 @@ def main():
             "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
                 "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
                 "fluid_and_rest": w_cpl - dem_s - coupling_s},
+            # What the ratio is made of: 1 + (fluid + exchange per exchange) / (N x DEM step).
+            "per_exchange_fluid_and_coupling_s": (w_cpl - dem_s) / max(len(rows), 1),
+            "per_dem_step_s": dem_s / max(float(rows[-1]["demStep"]), 1.0) if rows else None,
             "observables": observables(case, a.end), "particles": summ["settled"]["particles"]})
-    base = runs[0]["observables"]
-    for r in runs[1:]:  # how far each observable moves from the shortest interval's value
-        r["change_vs_every%d" % runs[0]["exchange_every"]] = {
-            k: v - base[k] for k, v in r["observables"].items()}
+    done = [r for r in runs if "observables" in r]
+    for r in done[1:]:  # how far each observable moves from the shortest interval's value
+        r["change_vs_every%d" % done[0]["exchange_every"]] = {
+            k: v - done[0]["observables"][k] for k, v in r["observables"].items()}
     res = {
-        "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (813 grains, 2-D fluid 0.06 m)",
+        "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
-        "simulated_s": a.end, "particles": runs[0]["particles"],
+        "simulated_s": a.end, "particles": done[0]["particles"] if done else None,
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry,
         "dry_collapse_cpu_s_by_difference": c_dry_diff, "target_ratio": 1.3,
         "runs": runs,
