@@ -20,6 +20,7 @@
 //
 // Re_p -> 0: Cd |U - v| is evaluated as (0.63 sqrt|U - v| + 4.8 sqrt(mu / (rho d eps_f)))^2,
 // finite at zero slip, so beta stays finite and the implicit drag is well defined at rest.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -57,8 +58,13 @@ namespace {
 class DiFeliceDrag final : public ForceModel {
  public:
   DiFeliceDrag(const Dictionary& coeffs, const ForceContext& c) {
-    coeffs.allowOnly({"divideByVoidfraction"});
+    coeffs.allowOnly({"divideByVoidfraction", "viscosityMax"});
     divide_ = coeffs.switchOr("divideByVoidfraction", c.formulation == "B");
+    // A drag-only viscosity bound (Pa s; default none): for a yield-stress liquid the same as
+    // evaluating its law at a shear rate of at least the one where it reaches this viscosity,
+    // i.e. a pore-scale shear rate the unresolved mesh does not see (docs/parameters.md).
+    if (coeffs.has("viscosityMax"))
+      viscosityMax_ = coeffs.scalar("viscosityMax", Range::positive());
   }
   const std::string& name() const override {
     static const std::string n = "DiFeliceDrag";
@@ -67,7 +73,8 @@ class DiFeliceDrag final : public ForceModel {
   unsigned needs() const override { return kNeedsU | kNeedsRho | kNeedsMu | kNeedsVoidfraction; }
   ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const override {
     ParticleForce out;
-    out.beta = diFelice(2 * p.radius, f.rho, f.mu, f.voidfraction, mag(f.U - p.v), divide_).beta;
+    const double mu = viscosityMax_ > 0 ? std::min(f.mu, viscosityMax_) : f.mu;
+    out.beta = diFelice(2 * p.radius, f.rho, mu, f.voidfraction, mag(f.U - p.v), divide_).beta;
     return out;
   }
   std::string describe() const override {
@@ -77,11 +84,13 @@ class DiFeliceDrag final : public ForceModel {
       << (divide_ ? "divided by eps_f (formulation B drag)"
                   : "not divided by eps_f (Eq. 10 as printed, formulation A drag)")
       << "; mu_f = rho nu of the mixture at the resolved shear rate";
+    if (viscosityMax_ > 0) s << ", bounded by viscosityMax " << viscosityMax_ << " Pa s";
     return s.str();
   }
 
  private:
   bool divide_ = true;
+  double viscosityMax_ = 0;  // 0: the apparent viscosity as it is
 };
 
 }  // namespace

@@ -398,6 +398,10 @@ def tier_edits(case_dir, tier, scene):
                             f"{rel}; list '{fkey}' in contentSpecific if that is expected")
         with open(path) as f:
             text = f.read()
+        # A block named on the command line (--set FILE.block.entry=V) is created if the case
+        # lacks it (e.g. DiFeliceDragCoeffs); a tier's own overrides must find theirs.
+        if tier.sets.get(fkey):
+            text = _create_blocks(text, tier.sets[fkey])
         try:
             new, actions = edit_dict(text, tree, note=f"tier {tier.name}",
                                      optional=lambda blk, fk=fkey: tier.optional(fk, blk))

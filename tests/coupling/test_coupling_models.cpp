@@ -161,6 +161,26 @@ TEST(ForceModels, SelectionAndCoefficients) {
                InputError);
 }
 
+TEST(DiFeliceDrag, ViscosityMaxBoundsOnlyTheDragsViscosity) {
+  // A capped Herschel-Bulkley liquid near rest (mu 1e4 Pa s) seen by the drag at viscosityMax
+  // 1 Pa s: beta is the one at 1 Pa s; a liquid below the bound is untouched.
+  ForceContext c;
+  const auto drag = ForceModel::New(
+      "DiFeliceDrag", dict("DiFeliceDragCoeffs { divideByVoidfraction no; viscosityMax 1; }"), c);
+  ParticleState p;
+  p.radius = 0.012;
+  FluidAtParticle f;
+  f.rho = 1000;
+  f.voidfraction = 0.4;
+  f.U = Vec3(0, 1e-3, 0);
+  f.mu = 1e4;
+  EXPECT_NEAR(drag->force(p, f).beta, diFelice(0.024, 1000, 1.0, 0.4, 1e-3, false).beta, 1e-9);
+  f.mu = 0.5;
+  EXPECT_NEAR(drag->force(p, f).beta, diFelice(0.024, 1000, 0.5, 0.4, 1e-3, false).beta, 1e-9);
+  EXPECT_THROW(ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { viscosityMax 0; }"), c),
+               InputError);
+}
+
 TEST(ForceModels, BuoyancyIsMinusDisplacedFluidWeight) {
   ForceContext c;
   c.g = Vec3(0, -kG, 0);
