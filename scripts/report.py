@@ -576,7 +576,10 @@ def locked(s):
         return ""
     return ("the converged drag (implicit, pressureCoupling mixture) holds the saturated column: "
             "at the capped viscosity its pore liquid drains too slowly for the packing to dilate "
-            "(coupling/README.md, 'Pressure coupling')")
+            "(coupling/README.md, 'Pressure coupling'); a drag viscosity bound "
+            "(DiFeliceDragCoeffs viscosityMax) releases it only far below the liquid's apparent "
+            "viscosity "
+            "(results/mixtures/README.md, drag_viscosity_max*)")
 
 
 def tiers_of(*scenes):
