@@ -157,10 +157,10 @@ def main():
     # commands as the coupled case's); the difference of two whole runs is kept as a check (it
     # carries both settlings' noise, which at the paper's stiffness is larger than the collapse).
     m = re.search(r"collapse phase: wall [0-9.eE+-]+ s, CPU ([0-9.eE+-]+) s", dry_out)
-    c_dry_diff = None if c_settle is None else c_dry_all - c_settle
-    c_dry = float(m.group(1)) if m else c_dry_diff
-    if c_dry is None:
+    if not m:
         sys.exit("coupled_vs_dry: mixflowDem printed no collapse-phase CPU (an old build?)")
+    c_dry = float(m.group(1))
+    c_dry_diff = None if c_settle is None else c_dry_all - c_settle
     runs = []
     for n in everies:
         case = os.path.join(work, f"{a.liquid}+P-quick-every{n}")
@@ -178,7 +178,9 @@ def main():
         # The time loop alone (start-up, mesh and restart reading left out, as the dry side's
         # settling is); the whole process's CPU is kept too.
         m = re.search(r"time loop CPU ([0-9.eE+-]+) s", out)
-        c_cpl = float(m.group(1)) if m else c_proc
+        if not m:
+            sys.exit("coupled_vs_dry: mixflowCoupled printed no time-loop CPU (an old build?)")
+        c_cpl = float(m.group(1))
         m = re.search(r"inside LIGGGHTS runs ([0-9.eE+-]+) s", out)
         dem_s = float(m.group(1)) if m else float("nan")
         with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
@@ -194,7 +196,8 @@ def main():
             "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
                 "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
                 "fluid_and_rest": w_cpl - dem_s - coupling_s},
-            # What the ratio is made of: 1 + (fluid + exchange per exchange) / (N x DEM step).
+            # What the ratio is made of (bench/README.md): ratio ~ DEM_coupled / DEM_dry +
+            # (fluid + exchange per exchange) / (N x DEM step cost).
             "per_exchange_fluid_and_coupling_s": (w_cpl - dem_s) / max(len(rows), 1),
             "per_dem_step_s": dem_s / max(float(rows[-1]["demStep"]), 1.0) if rows else None,
             "observables": observables(case, a.end), "particles": summ["settled"]["particles"]})

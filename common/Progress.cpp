@@ -13,10 +13,15 @@ Progress::Progress(std::string label, double startTime, double endTime, std::ost
       end_(endTime),
       out_(out),
       minInterval_(minInterval),
-      t0_(std::chrono::steady_clock::now()) {}
+      t0_(std::chrono::steady_clock::now()),
+      cpu0_(std::clock()) {}
 
 double Progress::wallSeconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+double Progress::cpuSeconds() const {
+  return static_cast<double>(std::clock() - cpu0_) / CLOCKS_PER_SEC;
 }
 
 std::string Progress::hms(double seconds) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <ctime>
 #include <iosfwd>
 #include <string>
 
@@ -14,6 +15,7 @@ class Progress {
            double minInterval = 5.0);
   void update(double simTime, bool force = false, const std::string& extra = "");
   double wallSeconds() const;
+  double cpuSeconds() const;  // this process's CPU since construction
 
   static std::string hms(double seconds);
 
@@ -24,6 +26,7 @@ class Progress {
   double minInterval_;
   double lastPrint_ = -1e300;
   std::chrono::steady_clock::time_point t0_;
+  std::clock_t cpu0_;
 };
 
 }  // namespace mixflow

@@ -58,13 +58,6 @@ void FoamCellLocator::setPeriodicZ(double lo, double hi) {
   }
 }
 
-// Behind (or on) every face plane of a convex cell.
-bool FoamCellLocator::inside(const Foam::point& q, long cell) const {
-  for (long k = firstPlane_[cell]; k < firstPlane_[cell + 1]; ++k)
-    if ((planes_[k].n & q) > planes_[k].d) return false;
-  return true;
-}
-
 // From the seed, cross the face the point is furthest beyond until a cell holds it; -1 if that
 // would leave the local mesh or take more than kMaxHops.
 long FoamCellLocator::hop(const Foam::point& q, long seed) const {

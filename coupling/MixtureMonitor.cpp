@@ -32,7 +32,6 @@ MixtureMonitor::MixtureMonitor(const dem::Scene& scene, dem::LiggghtsSession& li
   rec_->startSnapshots();
   progress_ =
       std::make_unique<Progress>("coupled " + scene_.name, rec_->time(), scene_.endTime, out_);
-  cpu0_ = std::clock();
 }
 
 void MixtureMonitor::afterStep() {
@@ -63,8 +62,8 @@ void MixtureMonitor::finish() {
     // The DEM share of the wall time (bench/coupled_vs_dry.py splits DEM, coupling and fluid).
     out_ << "[coupled " << scene_.name << "] wall time " << progress_->wallSeconds()
          << " s, of which inside LIGGGHTS runs " << lig_.runSeconds() << " s\n[coupled "
-         << scene_.name << "] time loop CPU " << double(std::clock() - cpu0_) / CLOCKS_PER_SEC
-         << " s (rank 0)" << std::endl;
+         << scene_.name << "] time loop CPU " << progress_->cpuSeconds() << " s (rank 0)"
+         << std::endl;
   }
 }
 

@@ -8,7 +8,6 @@
 // Active when constant/sceneProperties says content mixture; plain C++ (no OpenFOAM).
 #pragma once
 
-#include <ctime>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -41,7 +40,6 @@ class MixtureMonitor {
   dem::CollapseReport rep_;
   dem::SettleReport settled_;
   long lastSampleStep_ = 0;
-  std::clock_t cpu0_ = 0;  // process CPU at the start of the time loop (bench/coupled_vs_dry.py)
   bool profileDone_ = false;
 };
 
