@@ -19,7 +19,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
                                       "logEvery",           "dragRelaxationLimit",
                                       "maxVelocity",        "dragIntegration",
                                       "dragFluidResponse",  "dragCounterflowLimit",
-                                      "pressureCoupling"};
+                                      "pressureCoupling",   "dragReactionVelocity"};
   for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
   for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
   d.allowOnly(allowed);
@@ -35,6 +35,8 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.voidFractionModel = d.wordOr("voidFractionModel", "divided", VoidFractionModel::available());
   p.interpolation = d.wordOr("interpolation", "cell", {"cell", "cellPoint"});
   p.sourceDistribution = d.wordOr("sourceDistribution", "volume", {"volume", "centre"});
+  p.dragReactionVelocity =
+      d.wordOr("dragReactionVelocity", "particleMean", {"particleMean", "cell"});
   p.hasVoidfractionMin = d.has("voidfractionMin");
   if (p.hasVoidfractionMin)
     p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});

@@ -8,6 +8,8 @@
 //   interpolation       cell;       // cell | cellPoint: fluid values at a particle
 //   sourceDistribution  volume;     // volume: reaction spread like the particle's volume;
 //                                   // centre: all in the centre's cell
+//   dragReactionVelocity particleMean;  // particleMean | cell: the velocity the explicit part of
+//                                   // the fluid's drag reaction is taken at (SourceAssembly.h)
 //   voidfractionMin     0.05;       // eps_f floor; default: mixflowProperties' voidfractionMin
 //   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
 //   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
@@ -40,6 +42,7 @@ struct CouplingProperties {
   std::string voidFractionModel = "divided";
   std::string interpolation = "cell";
   std::string sourceDistribution = "volume";
+  std::string dragReactionVelocity = "particleMean";
   bool hasVoidfractionMin = false;
   double voidfractionMin = 0.05;
   long logEvery = 1;

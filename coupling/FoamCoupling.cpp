@@ -161,18 +161,22 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
     MPI_Allgather(mine, 6, MPI_DOUBLE, boxes_.data(), 6, MPI_DOUBLE, MPI_COMM_WORLD);
   }
   std::vector<double> volumes(mesh_.V().begin(), mesh_.V().end());
-  assembly_ = std::make_unique<SourceAssembly>(std::move(volumes), voidfractionMin_,
-                                               props_->sourceDistribution == "centre"
-                                                   ? SourceAssembly::Distribution::centre
-                                                   : SourceAssembly::Distribution::volume);
+  assembly_ = std::make_unique<SourceAssembly>(
+      std::move(volumes), voidfractionMin_,
+      props_->sourceDistribution == "centre" ? SourceAssembly::Distribution::centre
+                                             : SourceAssembly::Distribution::volume,
+      props_->dragReactionVelocity == "cell" ? SourceAssembly::ReactionVelocity::cell
+                                             : SourceAssembly::ReactionVelocity::particleMean);
 
   Foam::Info << "Coupling (constant/couplingProperties): exchange every " << props_->exchangeEvery
              << " DEM steps (DEM dt " << link_->timeStep() << " s, CFD dt " << runTime.deltaTValue()
              << " s), drag integration " << props_->dragIntegration.c_str() << ", interpolation "
              << props_->interpolation.c_str() << ", reaction distribution "
-             << props_->sourceDistribution.c_str() << ", voidfractionMin " << voidfractionMin_
-             << ", pressure coupling " << props_->pressureCoupling.c_str() << Foam::nl
-             << "  void fraction: " << voidFractionModel_->describe().c_str() << Foam::nl;
+             << props_->sourceDistribution.c_str() << " (drag reaction at the "
+             << props_->dragReactionVelocity.c_str() << " velocity), voidfractionMin "
+             << voidfractionMin_ << ", pressure coupling " << props_->pressureCoupling.c_str()
+             << Foam::nl << "  void fraction: " << voidFractionModel_->describe().c_str()
+             << Foam::nl;
   for (const auto& m : forceModels_) Foam::Info << "  force: " << m->describe().c_str() << Foam::nl;
   Foam::Info << Foam::endl;
 

@@ -6,8 +6,11 @@
 namespace mixflow::coupling {
 
 SourceAssembly::SourceAssembly(std::vector<double> cellVolumes, double voidfractionMin,
-                               Distribution d)
-    : volumes_(std::move(cellVolumes)), voidfractionMin_(voidfractionMin), distribution_(d) {
+                               Distribution d, ReactionVelocity r)
+    : volumes_(std::move(cellVolumes)),
+      voidfractionMin_(voidfractionMin),
+      distribution_(d),
+      reactionVelocity_(r) {
   if (!(voidfractionMin_ >= 0 && voidfractionMin_ < 1))
     throw std::invalid_argument("SourceAssembly: voidfractionMin must be in [0, 1)");
   reset();
@@ -80,14 +83,27 @@ void SourceAssembly::depositReaction(const ParticleState& p, const ParticleCells
                                      const ParticleForce& force, const Vec3& Ui, double insideTotal,
                                      bool holdsCentre, const std::vector<Vec3>& Ucell,
                                      const Vec3& explicitDrag) {
+  const bool centreOnly = distribution_ == Distribution::centre || insideTotal <= 0;
+  // particleMean: U_ref is the deposit-weighted mean of U_c over the cells deposited into here
+  // (one cell for the centre distribution, where it equals U_c).
+  Vec3 Umean;
+  double wsum = 0;
+  if (reactionVelocity_ == ReactionVelocity::particleMean && !centreOnly) {
+    for (const auto& cv : localCells.volumes) {
+      Umean += cv.second * Ucell[cv.first];
+      wsum += cv.second;
+    }
+    if (wsum > 0) Umean = (1.0 / wsum) * Umean;
+  }
   auto deposit = [&](long c, double w) {
     const double s = w / volumes_[c];
+    const Vec3& Uref = wsum > 0 ? Umean : Ucell[c];
     ksl_[c] += s * force.beta;
     kslUs_[c] += (s * force.beta) * p.v;
-    fSource_[c] += s * (force.beta * (Ucell[c] - Ui) - force.explicitForce);
+    fSource_[c] += s * (force.beta * (Uref - Ui) - force.explicitForce);
     fDrag_[c] -= s * explicitDrag;
   };
-  if (distribution_ == Distribution::centre || insideTotal <= 0) {
+  if (centreOnly) {
     if (holdsCentre && localCells.centreCell >= 0) deposit(localCells.centreCell, 1.0);
   } else {
     for (const auto& cv : localCells.volumes) deposit(cv.first, cv.second / insideTotal);

@@ -2,11 +2,23 @@
 //   voidfraction  eps_f = 1 - V_solid / V_c, floored at voidfractionMin (the volume the floor
 //                 removes is counted as clipped, never dropped silently);
 //   Ksl, Us       implicit drag: Ksl = sum_i w_ic beta_i / V_c, Ksl Us = sum_i w_ic beta_i v_i /
-//   V_c; fSource       explicit rest: sum_i w_ic [-F_expl,i + beta_i (U_c - U_i)] / V_c,
+//   V_c; fSource       explicit rest: sum_i w_ic [-F_expl,i + beta_i (U_ref - U_i)] / V_c,
 // where w_ic is particle i's share in cell c (its volume share over the cells it covers inside
 // the mesh, or 1 for the centre cell only) and U_i the fluid velocity the particle's drag used.
-// The term beta_i (U_c - U_i) makes the fluid's force exactly -sum F_i at the exchange whatever
+// The term beta_i (U_ref - U_i) makes the fluid's force exactly -sum F_i at the exchange whatever
 // the interpolation: sum_c V_c [Ksl (Us - U_c) + fSource] = sum_i [beta_i (v_i - U_i) - F_expl,i].
+// U_ref (couplingProperties dragReactionVelocity):
+//   particleMean  the mean fluid velocity over the particle's part in this rank's cells, weighted
+//                 like the deposit (sum_c w_ic U_c / sum_c w_ic). The explicit term is then the
+//                 same in every cell of the particle, so the implicit -Ksl U_c damps each cell's
+//                 own velocity, including cells that hold only slivers of particles centred
+//                 elsewhere (a bed's edge and top row). Exact for any partition: each rank's parts
+//                 give w_q beta (v - U_i).
+//   cell          U_c (sessions 1-9): the explicit term cancels the implicit drag of a cell
+//                 wherever its velocity differs from the velocity at the particles' centres, so
+//                 sliver cells carry no drag on their own velocity. That let air flow at 10-20
+//                 m/s through the edge cells of a saturated column (coupling/README.md, "Air
+//                 jets").
 #pragma once
 
 #include <string>
@@ -37,8 +49,10 @@ struct ExchangeTotals {
 class SourceAssembly {
  public:
   enum class Distribution { centre, volume };
+  enum class ReactionVelocity { particleMean, cell };
 
-  SourceAssembly(std::vector<double> cellVolumes, double voidfractionMin, Distribution d);
+  SourceAssembly(std::vector<double> cellVolumes, double voidfractionMin, Distribution d,
+                 ReactionVelocity r = ReactionVelocity::particleMean);
 
   // Pass 1: particle volumes -> eps_f. In serial addVolume() does both parts; in parallel the
   // rank owning the particle (in LIGGGHTS) counts it, every rank holding part of it adds its cells.
@@ -84,6 +98,7 @@ class SourceAssembly {
   std::vector<double> volumes_;
   double voidfractionMin_;
   Distribution distribution_;
+  ReactionVelocity reactionVelocity_;
   std::vector<double> solid_, voidfraction_, ksl_, response_;
   std::vector<Vec3> kslUs_, us_, fSource_, fDrag_;
   ExchangeTotals totals_;

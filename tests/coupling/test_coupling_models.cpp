@@ -279,12 +279,14 @@ struct Balance {
   double volumeError, actionReaction, clipped, outside, scale;
 };
 
-Balance randomBalance(const std::string& vfModel, SourceAssembly::Distribution dist,
-                      bool interpolatedU, unsigned seed) {
+Balance randomBalance(
+    const std::string& vfModel, SourceAssembly::Distribution dist, bool interpolatedU,
+    unsigned seed,
+    SourceAssembly::ReactionVelocity rv = SourceAssembly::ReactionVelocity::particleMean) {
   const GridLocator grid(0.1, 5);
   const auto model = VoidFractionModel::New(vfModel, dict(""));
   std::vector<double> volumes(grid.cells(), grid.cellVolume());
-  SourceAssembly a(volumes, 0.4, dist);
+  SourceAssembly a(volumes, 0.4, dist, rv);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(-0.004, 0.104), unit(-1, 1), rad(0.004, 0.006);
   std::vector<Vec3> Ucell(grid.cells());
@@ -330,20 +332,64 @@ TEST(SourceAssembly, ExactVolumeAndActionReaction) {
     SourceAssembly::Distribution dist;
     bool interpolated;
   };
+  using RV = SourceAssembly::ReactionVelocity;
   for (const Case& c : {Case{"divided", SourceAssembly::Distribution::volume, true},
                         Case{"divided", SourceAssembly::Distribution::centre, true},
                         Case{"divided", SourceAssembly::Distribution::volume, false},
-                        Case{"centre", SourceAssembly::Distribution::volume, false}}) {
-    const Balance b = randomBalance(c.model, c.dist, c.interpolated, 2024);
-    std::cout << "  " << c.model
-              << (c.dist == SourceAssembly::Distribution::volume ? " / volume" : " / centre")
-              << (c.interpolated ? " / interpolated U" : " / cell U") << ": volume error "
-              << b.volumeError << ", action-reaction " << b.actionReaction << ", clipped "
-              << b.clipped << ", outside " << b.outside << std::endl;
-    EXPECT_LT(std::abs(b.volumeError), 1e-12);
-    EXPECT_LT(b.actionReaction, 1e-12);
-    EXPECT_GT(b.clipped, 0.01);   // the floor was exercised
-    EXPECT_GT(b.outside, 0.001);  // so was the outside accounting
+                        Case{"centre", SourceAssembly::Distribution::volume, false}})
+    for (const RV rv : {RV::particleMean, RV::cell}) {
+      const Balance b = randomBalance(c.model, c.dist, c.interpolated, 2024, rv);
+      std::cout << "  " << c.model
+                << (c.dist == SourceAssembly::Distribution::volume ? " / volume" : " / centre")
+                << (c.interpolated ? " / interpolated U" : " / cell U")
+                << (rv == RV::cell ? " / reaction at U_c" : " / reaction at particle mean")
+                << ": volume error " << b.volumeError << ", action-reaction " << b.actionReaction
+                << ", clipped " << b.clipped << ", outside " << b.outside << std::endl;
+      EXPECT_LT(std::abs(b.volumeError), 1e-12);
+      EXPECT_LT(b.actionReaction, 1e-12);
+      EXPECT_GT(b.clipped, 0.01);   // the floor was exercised
+      EXPECT_GT(b.outside, 0.001);  // so was the outside accounting
+    }
+}
+
+TEST(SourceAssembly, SliverCellDragActsOnItsOwnVelocity) {
+  // One particle centred in cell A with a sliver in cell B, which moves at 3 m/s while A is at
+  // rest; the particle's drag used U_A. The fluid's force on B, Ksl_B (Us_B - U_B) + fSource_B,
+  // must depend on U_B through the implicit term: with particleMean the explicit part per unit
+  // Ksl is the same in A and B (so dF_B/dU_B = -Ksl_B V_B), with `cell` it cancels the implicit
+  // term in B (the fluid in B feels no drag on its own velocity). Both give the exact total.
+  const GridLocator grid(0.1, 5);
+  const auto model = VoidFractionModel::New("divided", dict(""));
+  ParticleState p;
+  p.x = Vec3(0.057, 0.05, 0.05);  // 3 mm from the face x = 0.06 between A and B
+  p.v = Vec3(0, -0.2, 0);
+  p.radius = 0.005;
+  ParticleCells cells;
+  model->locate(p, -1, grid, cells);
+  ASSERT_EQ(cells.volumes.size(), 2u);
+  const long A = cells.centreCell;
+  const long B = cells.volumes[0].first == A ? cells.volumes[1].first : cells.volumes[0].first;
+  std::vector<Vec3> Ucell(grid.cells());
+  Ucell[B] = Vec3(0, -3, 0);
+  ParticleForce f;
+  f.beta = 0.5;
+  using RV = SourceAssembly::ReactionVelocity;
+  for (const RV rv : {RV::particleMean, RV::cell}) {
+    SourceAssembly a(std::vector<double>(grid.cells(), grid.cellVolume()), 0.05,
+                     SourceAssembly::Distribution::volume, rv);
+    a.addVolume(p, cells);
+    a.finishVoidfraction();
+    a.addSource(p, cells, f, Ucell[A], Ucell);
+    a.finishSources(Ucell);
+    // Total: exactly minus the particle's drag beta (U_A - v).
+    EXPECT_NEAR(a.totals().forceOnFluid.y, -f.beta * (Ucell[A].y - p.v.y), 1e-14);
+    const double perKslA = a.fSource()[A].y / a.Ksl()[A];
+    const double perKslB = a.fSource()[B].y / a.Ksl()[B];
+    if (rv == RV::particleMean) {
+      EXPECT_NEAR(perKslA, perKslB, 1e-12);  // the same explicit velocity in both cells
+    } else {
+      EXPECT_NEAR(perKslB, Ucell[B].y - Ucell[A].y, 1e-12);  // cancels -Ksl_B U_B
+    }
   }
 }
 
