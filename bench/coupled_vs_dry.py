@@ -100,6 +100,9 @@ def main():
     ap.add_argument("--settled", help="a dem/ directory with settled.{restart,state} of an "
                     "earlier run of this bench with the same DEM settings (kept with --keep): "
                     "the coupled runs start from it instead of settling again")
+    ap.add_argument("--void-smoothing", type=float,
+                    help="couplingProperties dividedCoeffs smoothing (face band / particle radius; "
+                         "default: the case's, 0 = off)")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()
@@ -125,6 +128,11 @@ def main():
         set_entry(cp, "dragIntegration", a.drag_integration)
     if a.drag_fluid_response:
         set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
+    if a.void_smoothing is not None:
+        if "dividedCoeffs" in open(cp).read():
+            sys.exit("coupled_vs_dry: the case already has dividedCoeffs; edit it instead")
+        with open(cp, "a") as f:
+            f.write(f"dividedCoeffs {{ smoothing {a.void_smoothing!r}; }}\n")
     dem_dict = os.path.join(cpl, "system", "demDict")
     for entry, value in (("rayleighFraction", a.rayleigh_fraction),
                          ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
@@ -209,6 +217,7 @@ def main():
         "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
+        "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,
         "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": done[0]["particles"] if done else None,

@@ -24,7 +24,9 @@
 //                                   // (0: no limit)
 //   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
 //   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B
-//   dividedCoeffs       { nShells 3; nDirections 16; }
+//   dividedCoeffs       { nShells 3; nDirections 16; smoothing 0; }  // smoothing: face band
+//                                   // / particle radius over which a point's weight is shared
+//                                   // with the cell across (0: off)
 #pragma once
 
 #include <string>

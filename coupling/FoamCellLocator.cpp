@@ -1,6 +1,7 @@
 // FoamCellLocator: see FoamCellLocator.H.
 #include "FoamCellLocator.H"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mixflow::coupling {
@@ -81,13 +82,17 @@ long FoamCellLocator::hop(const Foam::point& q, long seed) const {
   return -1;
 }
 
-long FoamCellLocator::findCell(const Vec3& p, long seed) const {
+Foam::point FoamCellLocator::wrapped(const Vec3& p) const {
   double z = p.z;
   if (periodicZ_ && (z < zLo_ || z >= zLo_ + zSpan_)) {
     z = zLo_ + std::fmod(z - zLo_, zSpan_);
     if (z < zLo_) z += zSpan_;
   }
-  const Foam::point q(p.x, p.y, z);
+  return Foam::point(p.x, p.y, z);
+}
+
+long FoamCellLocator::findCell(const Vec3& p, long seed) const {
+  const Foam::point q = wrapped(p);
   if (!bounds_.contains(q)) return -1;
   if (seed >= 0 && seed < mesh_.nCells()) {
     const long c = hop(q, seed);
@@ -108,6 +113,18 @@ bool FoamCellLocator::sphereInsideCell(const Vec3& centre, double r, long cell) 
     if (planes_[k].d - (planes_[k].n & c) < r) return false;
   }
   return true;
+}
+
+void FoamCellLocator::facesNear(const Vec3& p, long cell, double band,
+                                std::vector<NearFace>& out) const {
+  out.clear();
+  const Foam::point q = wrapped(p);
+  for (long k = firstPlane_[cell]; k < firstPlane_[cell + 1]; ++k) {
+    const Plane& pl = planes_[k];
+    if (pl.across < 0) continue;
+    const double d = std::max(0.0, pl.d - (pl.n & q));  // >= 0 inside (round-off clamped)
+    if (d < band) out.push_back({pl.across, d, Vec3(pl.n.x(), pl.n.y(), pl.n.z())});
+  }
 }
 
 }  // namespace mixflow::coupling

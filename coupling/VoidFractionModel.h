@@ -33,6 +33,18 @@ class CellLocator {
   virtual bool sphereInsideCell(const Vec3& /*centre*/, double /*r*/, long /*cell*/) const {
     return false;
   }
+  // Optional, for the divided model's face smoothing: the faces between `cell` (which holds p)
+  // and another local cell whose plane lies within `band` of p, in `out` (cleared first).
+  // Default: none, so no smoothing.
+  struct NearFace {
+    long across;      // the cell on the other side
+    double distance;  // from p to the face plane (>= 0)
+    Vec3 normal;      // outward unit normal of the face
+  };
+  virtual void facesNear(const Vec3& /*p*/, long /*cell*/, double /*band*/,
+                         std::vector<NearFace>& out) const {
+    out.clear();
+  }
 };
 
 // Where one particle's volume went.
