@@ -201,6 +201,10 @@ def main():
             "exchange_every": n, "dem_step_s": dem_step, "exchange_interval_s": n * dem_step,
             "coupled_cpu_s": c_cpl, "coupled_process_cpu_s": c_proc,
             "ratio_coupled_over_dry": c_cpl / c_dry,
+            # The coupling's own cost over the dry collapse, as if the coupled DEM cost what the
+            # dry one did: the DEM's run-to-run cost varies by up to 60 % on this machine, and a
+            # held column does other DEM work than a collapsing one (bench/README.md).
+            "overhead_ratio": 1 + (w_cpl - dem_s) / c_dry,
             "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
                 "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
                 "fluid_and_rest": w_cpl - dem_s - coupling_s},
