@@ -103,6 +103,9 @@ def main():
     ap.add_argument("--void-smoothing", type=float,
                     help="couplingProperties dividedCoeffs smoothing (face band / particle radius; "
                          "default: the case's, 0 = off)")
+    ap.add_argument("--n-correctors", type=int,
+                    help="cfdDict nCorrectors, the PISO pressure correctors per fluid step "
+                         "(default: the case's; 10 for a yield-stress liquid)")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()
@@ -133,6 +136,13 @@ def main():
             sys.exit("coupled_vs_dry: the case already has dividedCoeffs; edit it instead")
         with open(cp, "a") as f:
             f.write(f"dividedCoeffs {{ smoothing {a.void_smoothing!r}; }}\n")
+    if a.n_correctors:
+        cfd = os.path.join(cpl, "system", "cfdDict")
+        if re.search(r"^nCorrectors\s", open(cfd).read(), re.M):
+            set_entry(cfd, "nCorrectors", str(a.n_correctors))
+        else:
+            with open(cfd, "a") as f:
+                f.write(f"nCorrectors {a.n_correctors};\n")
     dem_dict = os.path.join(cpl, "system", "demDict")
     for entry, value in (("rayleighFraction", a.rayleigh_fraction),
                          ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
@@ -222,6 +232,7 @@ def main():
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,
+        "n_correctors": a.n_correctors,
         "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": done[0]["particles"] if done else None,
