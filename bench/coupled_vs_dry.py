@@ -76,6 +76,15 @@ def observables(case, end):
     return out
 
 
+def edit(path, overrides):
+    """Set (or insert, creating blocks) the entries of OVERRIDES in the dictionary file PATH,
+    with suite.py's editor (the one behind its --set)."""
+    with open(path) as f:
+        text, _ = suite.edit_dict(f.read(), overrides, note="bench", create_blocks=True)
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--end", type=float, default=1.0)
@@ -132,17 +141,9 @@ def main():
     if a.drag_fluid_response:
         set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
     if a.void_smoothing is not None:
-        if "dividedCoeffs" in open(cp).read():
-            sys.exit("coupled_vs_dry: the case already has dividedCoeffs; edit it instead")
-        with open(cp, "a") as f:
-            f.write(f"dividedCoeffs {{ smoothing {a.void_smoothing!r}; }}\n")
+        edit(cp, {"dividedCoeffs": {"smoothing": repr(a.void_smoothing)}})
     if a.n_correctors:
-        cfd = os.path.join(cpl, "system", "cfdDict")
-        if re.search(r"^nCorrectors\s", open(cfd).read(), re.M):
-            set_entry(cfd, "nCorrectors", str(a.n_correctors))
-        else:
-            with open(cfd, "a") as f:
-                f.write(f"nCorrectors {a.n_correctors};\n")
+        edit(os.path.join(cpl, "system", "cfdDict"), {"nCorrectors": str(a.n_correctors)})
     dem_dict = os.path.join(cpl, "system", "demDict")
     for entry, value in (("rayleighFraction", a.rayleigh_fraction),
                          ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
