@@ -80,6 +80,8 @@ class DividedVoidFraction final : public VoidFractionModel {
       // prod_{k not in S} (1 - f_k), in the cell across all of them (the point pushed just past
       // each face of S; the face's own `across` for one face); what finds no cell stays in c.
       const size_t n = std::min<size_t>(near.size(), 3);  // a hex corner has 3
+      double f[3];                                        // each near face's share, (b - d) / (2 b)
+      for (size_t k = 0; k < n; ++k) f[k] = (band - near[k].distance) / (2 * band);
       double kept = w;
       for (unsigned mask = 1; mask < (1u << n); ++mask) {
         double share = 1;
@@ -87,14 +89,13 @@ class DividedVoidFraction final : public VoidFractionModel {
         int count = 0;
         long target = -1;
         for (size_t k = 0; k < n; ++k) {
-          const double f = (band - near[k].distance) / (2 * band);
           if (mask & (1u << k)) {
-            share *= f;
+            share *= f[k];
             q += (near[k].distance + 1e-6 * band) * near[k].normal;
             target = near[k].across;
             ++count;
           } else {
-            share *= 1 - f;
+            share *= 1 - f[k];
           }
         }
         if (count > 1) target = mesh.findCell(q, target);
