@@ -229,13 +229,19 @@ def add_fluid_response_arg(ap):
     ap.add_argument("--pressure-coupling", choices=("fluid", "mixture"),
                     help="couplingProperties pressureCoupling (default: the code's, mixture for "
                          "the implicit drag without dragFluidResponse, fluid otherwise)")
+    ap.add_argument("--void-smoothing", type=float,
+                    help="couplingProperties dividedCoeffs smoothing (default: the code's, 0); "
+                         "coupling/README.md, 'Void fraction jumps'")
 
 
 def fluid_response_entry(a):
-    """The couplingProperties lines for --drag-fluid-response and --pressure-coupling."""
+    """The couplingProperties lines for --drag-fluid-response, --pressure-coupling and
+    --void-smoothing."""
     text = f"dragFluidResponse {a.drag_fluid_response};\n"
     if a.pressure_coupling:
         text += f"pressureCoupling {a.pressure_coupling};\n"
+    if a.void_smoothing is not None:
+        text += f"dividedCoeffs {{ smoothing {a.void_smoothing!r}; }}\n"
     return text
 
 
