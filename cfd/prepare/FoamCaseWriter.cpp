@@ -210,7 +210,7 @@ std::string fvSolution(const LiquidCase& c) {
     << "PIMPLE\n{\n"
     << "    momentumPredictor   " << (m.momentumPredictor ? "yes" : "no") << ";\n"
     << "    nOuterCorrectors    " << m.nOuterCorrectors << ";\n"
-    << "    nCorrectors         " << m.nCorrectors << ";\n"
+    << "    nCorrectors         " << c.nCorrectorsUsed() << ";\n"
     << "    nNonOrthogonalCorrectors 0;\n}\n\n"
     << "relaxationFactors { equations { \".*\" 1; } }\n";
   return s.str();
@@ -329,6 +329,13 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
   else
     os << "tau0 " << num(r.tau0()) << " m2/s2, k " << num(r.k()) << ", n " << num(r.flowIndex)
        << ", nu0 " << num(r.nu0()) << " m2/s (cap " << num(r.viscosityCap) << " Pa s)\n";
+  const bool autoCorrectors = c.numerics.nCorrectors == 0;
+  const double D = c.viscousNumber(), limit = LiquidCase::kViscousNumberFewCorrectors;
+  os << "[mixflowPrepare] PISO nCorrectors " << c.nCorrectorsUsed()
+     << (autoCorrectors ? " (auto)" : " (cfdDict)")
+     << ": viscous number mu dt/(rho dx^2) = " << formatNumber(D, 3);
+  if (autoCorrectors) os << (D <= limit ? " <= " : " > ") << formatNumber(limit, 3);
+  os << "\n";
   os << "[mixflowPrepare] endTime " << num(c.endTime) << " s, writeInterval "
      << num(c.writeInterval) << " s, maxCo " << num(c.numerics.maxCo) << ", ranks " << ranks
      << "\n";

@@ -52,7 +52,7 @@ struct CfdNumerics {
   double maxAlphaCo = 0.5;   // interface Courant number limit
   double deltaT = 1e-4;      // first time step (s); adapted from then on
   double maxDeltaT = 0.01;   // largest time step (s)
-  int nCorrectors = 3;       // PISO pressure correctors per outer iteration (yield stress: 10)
+  int nCorrectors = 0;       // PISO pressure correctors per outer iteration; 0 = auto (below)
   int nOuterCorrectors = 1;  // PIMPLE outer iterations
   // On: the viscous term is then implicit in U. Off (interFoam's damBreak) lags it in PISO's
   // H(U), which holds a capped yield-stress liquid (mu up to viscosityCap) nearly still.
@@ -95,6 +95,16 @@ struct LiquidCase {
   double dx() const { return channel.length / nx; }
   double dy() const { return channel.height / ny; }
   double dz() const { return sample.width / nz; }
+  // The viscous number D = mu_max dt / (rho dx_min^2): the viscous term's neighbour coefficients
+  // over the unsteady diagonal, i.e. how much of the velocity correction PISO's diagonal-only
+  // pressure step leaves to the next corrector. mu_max is the Newtonian viscosity or the
+  // regularisation cap; dt the coupled step, else maxDeltaT (the adaptive step's bound, reached
+  // where a capped liquid is near rest).
+  double viscousNumber() const;
+  // nCorrectors as written to fvSolution: the user's, or for `auto` 3 up to
+  // kViscousNumberFewCorrectors and 10 above (bench/piso_correctors.py, docs/parameters.md).
+  int nCorrectorsUsed() const;
+  static constexpr double kViscousNumberFewCorrectors = 20;
   double minDepthUsed() const {
     return observables.minDepth > 0 ? observables.minDepth : 0.5 * dy();
   }

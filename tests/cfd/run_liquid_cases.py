@@ -350,6 +350,11 @@ BAD = [
     ("Courant number too high", VALID_HB, "system/cfdDict", ("cellSize 0.03;", "cellSize 0.03; "
                                                               "maxCo 3;"),
      ["system/cfdDict", "maxCo", "(0, 1]"]),
+    ("PISO correctors not a number", VALID_HB, "system/cfdDict",
+     ("cellSize 0.03;", "cellSize 0.03; nCorrectors many;"),
+     ["system/cfdDict", "nCorrectors", "'many'", "auto", "[1, 20]"]),
+    ("no PISO corrector", VALID_HB, "system/cfdDict",
+     ("cellSize 0.03;", "cellSize 0.03; nCorrectors 0;"), ["system/cfdDict", "nCorrectors", "[1, 20]"]),
     ("missing cfdDict", VALID_HB, "system/cfdDict", None, ["system/cfdDict", "cannot open file"]),
     ("missing endTime", VALID_HB, "system/controlDict", (r"endTime [^;]*;", ""),
      ["system/controlDict", "endTime", "missing"]),
@@ -384,13 +389,25 @@ def bad_input(a, work):
         ok &= check(good, f"{name}: exit {res.returncode}; {last}")
         if not good:
             print(f"       expected exit 2, fragments {missing} missing, files written: {wrote}")
-    for name, scene in (("HerschelBulkley", VALID_HB), ("Bingham", VALID_BINGHAM),
-                        ("Newtonian", VALID_NEWTONIAN)):
-        case = os.path.join(work, "valid_" + name)
-        write_case(case, scene, VALID_CFD, 3.0, 0.1)
+    # Valid cases, and `nCorrectors auto`: 3 for a viscous number D = mu_max maxDeltaT / (rho
+    # dx^2) up to 20, else 10 (HB and Bingham: cap 1e4 Pa s, 0.01 s, 0.03 m cells, D = 111;
+    # water D = 1.1e-5); an explicit entry wins.
+    for name, scene, cfd, want in (("HerschelBulkley", VALID_HB, VALID_CFD, "10 (auto)"),
+                                   ("Bingham", VALID_BINGHAM, VALID_CFD, "10 (auto)"),
+                                   ("Newtonian", VALID_NEWTONIAN, VALID_CFD, "3 (auto)"),
+                                   ("HB, explicit 4", VALID_HB, VALID_CFD + "nCorrectors 4;\n",
+                                    "4 (cfdDict)"),
+                                   ("HB, small step", VALID_HB, VALID_CFD + "deltaT 1e-4;\n"
+                                    "maxDeltaT 1e-4;\n", "3 (auto)")):
+        case = os.path.join(work, "valid_" + re.sub(r"\W+", "_", name))
+        write_case(case, scene, cfd, 3.0, 0.1)
         res = subprocess.run([a.prepare, "-case", case, "-check"], capture_output=True, text=True)
         ok &= check(res.returncode == 0, f"valid {name} case accepted "
                     f"({res.stdout.strip().splitlines()[-1] if res.stdout.strip() else res.stderr})")
+        got = re.search(r"PISO nCorrectors (\d+ \(\w+\))", res.stdout)
+        ok &= check(got is not None and got.group(1) == want,
+                    f"{name}: PISO nCorrectors {got.group(1) if got else '(not printed)'} "
+                    f"(expected {want})")
     return ok
 
 
