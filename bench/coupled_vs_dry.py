@@ -16,7 +16,13 @@ usage: coupled_vs_dry.py [--end 1.0] [--exchange-every 25,100] [--drag-integrati
 With several exchange intervals each coupled run is compared with the same dry twin, and the
 fronts and particle kinetic energy at half time and at the end are reported with their change
 from the first interval's run: the speed/accuracy trade of the exchange interval.
-CPU seconds (user + sys of the programs) are compared: wall time also counts waiting for a core."""
+CPU seconds (user + sys of the programs) are compared: wall time also counts waiting for a core.
+
+Second baseline, per coupled run: the same run's LIGGGHTS command stream without the coupling,
+replayed by plain `liggghts` (dry_replay): a dry collapse of the very sample the coupled run
+started from, in the same run chunks. The dry twin settles its own sample, whose collapse costs
+60-97 CPU s at the paper's stiffness from one run to the next (bench/README.md); the replay takes
+that variance out of the ratio (`ratio_coupled_over_dry_replay`)."""
 import argparse
 import csv
 import json
@@ -74,6 +80,26 @@ def observables(case, end):
         out[f"particle_ke_J_at_{t:g}s"] = float(g["ke_translational_J"])
         out[f"particle_mean_x_m_at_{t:g}s"] = float(e["meanX"])
     return out
+
+
+def dry_replay(case):
+    """The coupled run's own DEM work without the fluid: the command stream mixflowCoupled gave
+    LIGGGHTS (<case>/dem/in.liggghts: the settled sample restarted without the gate, then one
+    `run N` per exchange) minus the coupling's fixes (fluid forces, drag state) and snapshots,
+    replayed with the plain `liggghts` binary. The same grains from the same packing, the same
+    run chunks: a dry collapse that differs from the coupled run only by the coupling. Returns
+    its CPU seconds (the restart's reading included, ~0.1 s), or None without `liggghts`."""
+    if not shutil.which("liggghts"):
+        return None
+    drop = re.compile(r"mixflowDragState|mixflowFluidForce|^dump |^run 0$")
+    with open(os.path.join(case, "dem", "in.liggghts")) as f:
+        lines = [ln for ln in f if not drop.search(ln.rstrip("\n"))]
+    script = os.path.join(case, "dem", "in.dry_replay")
+    with open(script, "w") as f:
+        f.writelines(lines)
+    _, cpu = _timed(["liggghts", "-in", script, "-log", os.path.join(case, "dem", "log.dry_replay"),
+                     "-screen", "none"], case)
+    return cpu
 
 
 def edit(path, overrides):
@@ -206,6 +232,7 @@ def main():
             rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
         coupling_s = sum(float(r["seconds"]) for r in rows)
         summ = json.load(open(os.path.join(case, "postProcessing", "dem", "summary.json")))
+        c_replay = dry_replay(case)
         with open(os.path.join(case, "system", "in.liggghts")) as f:
             dem_step = float(re.search(r"^timestep\s+(\S+)", f.read(), re.M).group(1))
         runs.append({
@@ -216,6 +243,9 @@ def main():
             # dry one did: the DEM's run-to-run cost varies by up to 60 % on this machine, and a
             # held column does other DEM work than a collapsing one (bench/README.md).
             "overhead_ratio": 1 + (w_cpl - dem_s) / c_dry,
+            # Against the same sample's dry collapse (dry_replay): the coupling's cost alone.
+            "dry_replay_cpu_s": c_replay,
+            "ratio_coupled_over_dry_replay": c_cpl / c_replay if c_replay else None,
             "coupled_wall_s": w_cpl, "coupled_split_wall_s": {
                 "dem_inside_liggghts": dem_s, "coupling_exchanges": coupling_s,
                 "fluid_and_rest": w_cpl - dem_s - coupling_s},
