@@ -12,9 +12,10 @@ This sweep measures that dependence on a 2-D Newtonian column (0.1 x 0.1 m in a 
 with nCorrectors = 2, 3, 4, 10, 20. Each run is judged against the same mu's run with the most
 correctors that neither diverged nor burst (kinetic energy peaking at over 10x the calmest run's):
 largest difference of the bed front (relative to the reference's front advance) and of the
-time-integrated kinetic energy (relative), the CPU time, and whether it finished with a bounded energy (a run
-whose kinetic energy passes the column's initial potential energy, that stops, or that is still
-running after --timeout seconds with its step cut by the Courant limit, is 'diverged').
+time-integrated kinetic energy (relative), the CPU time, and whether it finished with a bounded
+energy (a run whose kinetic energy passes the column's initial potential energy, that stops, or
+that is still running after --timeout seconds with its step cut by the Courant limit, is
+'diverged').
 
 Usage: python3 bench/piso_correctors.py [--mu 1,5,25,100,250,1000] [--correctors 2,3,4,10,20]
                                         [--json OUT] [--csv OUT] [--work DIR] [--bin build/bin]
@@ -122,7 +123,8 @@ def compare(r, ref):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--mu", default="1,5,25,100,250,1000", help="Newtonian viscosities (Pa s)")
-    ap.add_argument("--correctors", default="2,3,4,10,20", help="nCorrectors; the largest is the reference")
+    ap.add_argument("--correctors", default="2,3,4,10,20",
+                    help="nCorrectors; the reference is the largest that neither diverged nor burst")
     ap.add_argument("--end", type=float, default=0.5)
     ap.add_argument("--timeout", type=float, default=60,
                     help="CPU-bound wall seconds after which a run counts as diverged")

@@ -3,6 +3,9 @@ run through its Allrun (mixflowDem -settleOnly, mixflowPrepare, blockMesh, mixfl
 checked against conservation laws, and then mixflowExtract on it, checked with h5py.
 
 Asserts (tolerances and why):
+  - `nCorrectors auto` on the coupled step: the viscous number mixflowPrepare printed matches
+    mu_max dt / (rho dx^2) recomputed from the scene, the CFD step and the mesh (to its 3 printed
+    digits), and fvSolution holds the rule's count (3 up to 20, else 10);
   - every exchange: action = reaction to 1e-10 of sum |F_i| (the source is assembled from the same
     forces; round-off only), fluid-seen particle volume = particle volume - outside - clipped to
     1e-9 (exact volume split);
@@ -48,6 +51,34 @@ def rows(path):
     with open(path) as f:
         lines = [ln for ln in f if not ln.startswith("#")]
     return list(csv.DictReader(lines))
+
+
+def check_correctors(case):
+    """`nCorrectors auto` on the coupled step: the D that mixflowPrepare printed equals mu_max
+    dt / (rho dx_min^2) recomputed here from the scene (cap or viscosity), the CFD step and the
+    mesh it printed (to the 3 digits printed), and the count written to fvSolution follows the
+    rule (3 up to D = 20, else 10; docs/parameters.md)."""
+    log = open(os.path.join(case, "log.mixflowPrepare")).read()
+    liquid = suite.read_dict(os.path.join(case, "constant", "sceneProperties"))["liquid"]
+    mu = float(liquid["viscosityCap"] if liquid["rheology"] != "Newtonian" else
+               liquid["viscosity"])
+    dt = float(re.search(r"CFD step (\S+) s", log).group(1))
+    m = re.search(r"(\d)-D, mesh .* cells of (\S+) x (\S+) x (\S+) m", log)
+    sides = [float(m.group(2)), float(m.group(3))]
+    if m.group(1) == "3":
+        sides.append(float(m.group(4)))
+    d_expected = mu * dt / (float(liquid["density"]) * min(sides) ** 2)
+    pm = re.search(r"PISO nCorrectors (\d+) \(auto\): viscous number mu dt/\(rho dx\^2\) = (\S+)",
+                   log)
+    written = int(re.search(r"nCorrectors\s+(\d+);",
+                            open(os.path.join(case, "system", "fvSolution")).read()).group(1))
+    rule = 3 if d_expected <= 20 else 10
+    # D is printed with 3 significant digits: within half a unit of the third.
+    good = (pm is not None and abs(float(pm.group(2)) - d_expected) <= 5e-3 * d_expected and
+            written == rule == int(pm.group(1)))
+    print(f"PISO correctors: D printed {pm.group(2) if pm else None}, recomputed {d_expected:.4g}; "
+          f"written {written}, rule {rule}")
+    return good
 
 
 def main():
@@ -113,13 +144,15 @@ def main():
     if r.returncode != 0:
         fc.fail(f"Allrun failed ({r.returncode}):\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
 
+    ok = check_correctors(case)
+
     pp = os.path.join(case, "postProcessing")
     ex = rows(os.path.join(pp, "coupling", "exchange.csv"))
     worst_ar = max(float(x["actionReaction"]) for x in ex)
     worst_vol = max(abs(float(x["volumeError"])) for x in ex)
     print(f"{len(ex)} exchanges: worst action-reaction {worst_ar:.3e} (limit 1e-10), "
           f"worst volume error {worst_vol:.3e} (limit 1e-9)")
-    ok = worst_ar <= 1e-10 and worst_vol <= 1e-9
+    ok &= worst_ar <= 1e-10 and worst_vol <= 1e-9
 
     liq = rows(os.path.join(pp, "liquid", "timeSeries.csv"))
     worst_liq = max(abs(float(x["volume_balance"])) for x in liq)
