@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs everything mixflow needs from Debian 12 packages, and OpenFOAM's headers from Debian's own
-# source package (Debian ships OpenFOAM's libraries but not its headers; see docs/build.md).
+# source package (Debian ships OpenFOAM's libraries but not its headers; see cfd/README.md).
 # Idempotent: a second run checks and returns in about a second.
 set -euo pipefail
 
