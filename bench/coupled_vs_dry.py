@@ -140,7 +140,7 @@ def main():
                          "default: the case's, 0 = off)")
     ap.add_argument("--n-correctors", type=int,
                     help="cfdDict nCorrectors, the PISO pressure correctors per fluid step "
-                         "(default: the case's; 10 for a yield-stress liquid)")
+                         "(default: the case's, auto: 3 or 10 by the viscous number)")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()

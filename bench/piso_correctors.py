@@ -33,26 +33,20 @@ import time
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
+import run_liquid_cases as liquid_cases  # noqa: E402  (write_case: the liquid tests' case writer)
+
 RHO, DX, DT = 1000.0, 0.005, 1e-3
-HDR = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
 
 
 def write_case(case, mu, ncorr, end):
-    shutil.rmtree(case, ignore_errors=True)
-    os.makedirs(os.path.join(case, "constant"))
-    os.makedirs(os.path.join(case, "system"))
-    files = {
-        "constant/sceneProperties": (
-            "content liquid;\nsample { length 0.1; height 0.1; width 0.1; }\n"
-            "channel { length 0.3; height 0.15; }\n"
-            f"liquid {{ rheology Newtonian; density {RHO}; viscosity {mu}; surfaceTension 0; }}\n"),
-        "system/cfdDict": (f"dimensions 2;\ncellSize {DX};\ndeltaT {DT};\nmaxDeltaT {DT};\n"
-                           f"nCorrectors {ncorr};\n"),
-        "system/controlDict": f"endTime {end};\nwriteInterval {end};\n",
-    }
-    for rel, body in files.items():
-        with open(os.path.join(case, rel), "w") as f:
-            f.write(HDR % os.path.basename(rel) + body)
+    """The column as a user writes it (sceneProperties, cfdDict, controlDict), with the liquid
+    tests' case writer."""
+    scene = ("content liquid;\nsample { length 0.1; height 0.1; width 0.1; }\n"
+             "channel { length 0.3; height 0.15; }\n"
+             f"liquid {{ rheology Newtonian; density {RHO}; viscosity {mu}; surfaceTension 0; }}\n")
+    cfd = f"dimensions 2;\ncellSize {DX};\ndeltaT {DT};\nmaxDeltaT {DT};\nnCorrectors {ncorr};\n"
+    liquid_cases.write_case(case, scene, cfd, end, end)
 
 
 def run(cmd, case, log, timeout=None):
@@ -124,7 +118,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--mu", default="1,5,25,100,250,1000", help="Newtonian viscosities (Pa s)")
     ap.add_argument("--correctors", default="2,3,4,10,20",
-                    help="nCorrectors; the reference is the largest that neither diverged nor burst")
+                    help="nCorrectors; the reference is the largest that neither diverged "
+                         "nor burst")
     ap.add_argument("--end", type=float, default=0.5)
     ap.add_argument("--timeout", type=float, default=60,
                     help="CPU-bound wall seconds after which a run counts as diverged")
