@@ -132,9 +132,10 @@ def main():
     ap.add_argument("--young-modulus-factor", type=float,
                     help="demDict youngModulusFactor (default: the case's, 1e-3); 1 is the paper's "
                     "70/700 GPa")
-    ap.add_argument("--settled", help="a dem/ directory with settled.{restart,state} of an "
-                    "earlier run of this bench with the same DEM settings (kept with --keep): "
-                    "the coupled runs start from it instead of settling again")
+    ap.add_argument("--settled", help="a dem/ directory with settled.{restart,state,inputs} of "
+                    "an earlier run of this bench with the same DEM settings (kept with --keep): "
+                    "the coupled runs start from it instead of settling again; mixflowDem -reuse "
+                    "refuses it if settled from other inputs (or before session 12, unfingerprinted)")
     ap.add_argument("--void-smoothing", type=float,
                     help="couplingProperties dividedCoeffs smoothing (face band / particle radius; "
                          "default: the case's, 0 = off)")
@@ -190,10 +191,10 @@ def main():
     mf = lambda p: os.path.join(a.bin, p)  # noqa: E731
     if a.settled:
         # A sample settled earlier with the same settings (settling at the paper's stiffness
-        # takes ~10 min for this scene); the dry twin still settles its own (not timed).
-        os.makedirs(os.path.join(cpl, "dem"), exist_ok=True)
-        for f in ("settled.restart", "settled.state"):
-            shutil.copy(os.path.join(a.settled, f), os.path.join(cpl, "dem", f))
+        # takes ~10 min for this scene), taken only if its fingerprint shows the same settling
+        # inputs (mixflowDem -reuse); the dry twin still settles its own (not timed).
+        timed([mf("mixflowDem"), "-case", cpl, "-settleOnly", "-reuse", os.path.abspath(a.settled)],
+              cpl)
         c_settle = None
     else:
         _, c_settle, _ = timed([mf("mixflowDem"), "-case", cpl, "-settleOnly"], cpl)

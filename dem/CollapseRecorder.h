@@ -25,6 +25,7 @@ struct SettleReport {
   double bulkFraction = 0;    // measured in the interior slab 2d <= y <= settledHeight - 2d
   double settleTime = 0;      // simulated settling time (s)
   bool converged = false;
+  std::string fingerprint;  // hash of the settling's inputs (SettledSample.h); empty: not recorded
 };
 
 struct CollapseReport {

@@ -13,6 +13,7 @@
 #include "Observables.h"
 #include "Progress.h"
 #include "SampleFill.h"
+#include "SettledSample.h"
 
 namespace mixflow::dem {
 
@@ -63,8 +64,7 @@ SettleReport DemDriver::settle() {
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
 
   const double m = s.particles.mass(), d = s.particles.diameter;
-  const double chunk = 0.02;
-  const long nChunk = std::max(1L, std::lround(chunk / dt_));
+  const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dt_));
   const double tFall = std::sqrt(2.0 * fill.top / kG);
   Progress progress("settle", 0.0, s.settle.maxTime, out_);
   double t = 0;
@@ -91,6 +91,8 @@ SettleReport DemDriver::settle() {
   lig_->run(nRelax);
   t += nRelax * dt_;
   SettleReport r = measureSample(t, converged);
+  settleInputs_ = settleInputs(s);
+  r.fingerprint = fingerprintOf(settleInputs_);
   if (rank_ == 0)
     out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
          << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
@@ -258,6 +260,8 @@ void DemDriver::writeSettledState(const SettleReport& st) {
       << "settled\n";
     writeSettledDict(f, st);
   }
+  // What it was made from, for a later run that would reuse it (SettledSample.h).
+  std::ofstream(dir / "settled.inputs") << settleInputs_;
   fs::rename(dir / "settled.state.tmp", dir / "settled.state");
 }
 
@@ -265,7 +269,9 @@ void writeSettledDict(std::ostream& f, const SettleReport& st) {
   f << "{\n  particles " << st.particles << ";\n  height " << fmt(st.settledHeight, 17)
     << ";\n  sampleFraction " << fmt(st.sampleFraction, 17) << ";\n  bulkFraction "
     << fmt(st.bulkFraction, 17) << ";\n  settleTime " << fmt(st.settleTime, 17) << ";\n  converged "
-    << (st.converged ? "yes" : "no") << ";\n}\n";
+    << (st.converged ? "yes" : "no") << ";\n";
+  if (!st.fingerprint.empty()) f << "  fingerprint \"" << st.fingerprint << "\";\n";
+  f << "}\n";
 }
 
 SettleReport readSettledDict(const Dictionary& sd) {
@@ -276,6 +282,7 @@ SettleReport readSettledDict(const Dictionary& sd) {
   st.bulkFraction = sd.scalar("bulkFraction", Range::nonNegative());
   st.settleTime = sd.scalar("settleTime", Range::nonNegative());
   st.converged = sd.switchOr("converged", false);
+  if (sd.has("fingerprint")) st.fingerprint = sd.word("fingerprint", {});
   return st;
 }
 

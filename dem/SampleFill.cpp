@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <random>
 #include <stdexcept>
 
@@ -44,18 +45,30 @@ Fill makeLooseFill(const Scene& s) {
   return f;
 }
 
+std::string dataFileText(const Fill& fill, const ParticleMaterial& p, const Box& box) {
+  std::string text;
+  char line[256];
+  std::snprintf(line, sizeof line, "mixflow loose fill\n\n%zu atoms\n2 atom types\n\n",
+                fill.centres.size());
+  text += line;
+  std::snprintf(line, sizeof line,
+                "%.12g %.12g xlo xhi\n%.12g %.12g ylo yhi\n%.12g %.12g zlo zhi\n\nAtoms\n\n",
+                box.xlo, box.xhi, box.ylo, box.yhi, box.zlo, box.zhi);
+  text += line;
+  long id = 1;
+  for (const auto& c : fill.centres) {
+    std::snprintf(line, sizeof line, "%ld 1 %.12g %.12g %.12g %.12g %.12g\n", id++, p.diameter,
+                  p.density, c[0], c[1], c[2]);
+    text += line;
+  }
+  return text;
+}
+
 void writeDataFile(const std::string& path, const Fill& fill, const ParticleMaterial& p,
                    const Box& box) {
-  FILE* out = std::fopen(path.c_str(), "w");
+  std::ofstream out(path);
+  out << dataFileText(fill, p, box);
   if (!out) throw std::runtime_error(path + ": cannot write the particle data file");
-  std::fprintf(out, "mixflow loose fill\n\n%zu atoms\n2 atom types\n\n", fill.centres.size());
-  std::fprintf(out, "%.12g %.12g xlo xhi\n%.12g %.12g ylo yhi\n%.12g %.12g zlo zhi\n\nAtoms\n\n",
-               box.xlo, box.xhi, box.ylo, box.yhi, box.zlo, box.zhi);
-  long id = 1;
-  for (const auto& c : fill.centres)
-    std::fprintf(out, "%ld 1 %.12g %.12g %.12g %.12g %.12g\n", id++, p.diameter, p.density, c[0],
-                 c[1], c[2]);
-  std::fclose(out);
 }
 
 }  // namespace mixflow::dem

@@ -19,7 +19,9 @@ struct Fill {
 
 Fill makeLooseFill(const Scene& s);
 
-// LAMMPS data file for atom_style granular ("id type diameter density x y z").
+// LAMMPS data file for atom_style granular ("id type diameter density x y z"): its text, and
+// the file.
+std::string dataFileText(const Fill& fill, const ParticleMaterial& p, const Box& box);
 void writeDataFile(const std::string& path, const Fill& fill, const ParticleMaterial& p,
                    const Box& box);
 

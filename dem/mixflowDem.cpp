@@ -3,7 +3,9 @@
 //   mpirun -np N mixflowDem -case DIR -parallel
 // -check validates the case and prints the derived time step, then stops.
 // -settleOnly settles the sample and saves it (dem/settled.restart, dem/settled.state): the first
-// step of a mixture scene, whose collapse runs in mixflowCoupled (scripts/MixtureRunFunctions).
+// step of a mixture scene, whose collapse runs in mixflowCoupled (scripts/LiquidRunFunctions).
+// -settleOnly -reuse DIR takes the sample settled in DIR (another run's dem/) instead, when it was
+// made from this case's settling inputs (dem/SettledSample.h); otherwise it stops and says why.
 #include <mpi.h>
 
 #include <cstring>
@@ -15,17 +17,23 @@
 #include "Dictionary.h"
 #include "Progress.h"
 #include "Scene.h"
+#include "SettledSample.h"
 
 namespace {
 void usage() {
-  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-resume] [-settleOnly] [-parallel]\n"
+  std::cout << "Usage: mixflowDem [-case DIR] [-check] [-resume] [-settleOnly [-reuse DIR2]] "
+               "[-parallel]\n"
                "  Runs the dry granular dam break described by DIR/constant/sceneProperties,\n"
                "  DIR/system/demDict and DIR/system/controlDict. Outputs: DIR/postProcessing/dem,\n"
                "  DIR/VTK (ParaView), DIR/dem (LIGGGHTS logs and replay script).\n"
                "  -resume continues from the last snapshot's restart state (after a crash, or\n"
                "  with a later endTime in system/controlDict).\n"
                "  -settleOnly settles the sample and saves it to DIR/dem/settled.{restart,state}\n"
-               "  (content particles or mixture; a mixture then runs in mixflowCoupled).\n";
+               "  (content particles or mixture; a mixture then runs in mixflowCoupled).\n"
+               "  -reuse DIR2 (with -settleOnly) takes the sample settled in DIR2 (e.g. another\n"
+               "  run's dem/) when its fingerprint shows the same settling inputs (fill,\n"
+               "  contacts, walls, DEM step, settling settings), else stops naming the first\n"
+               "  difference.\n";
 }
 }  // namespace
 
@@ -33,7 +41,7 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  std::string caseDir = ".";
+  std::string caseDir = ".", reuseDir;
   bool checkOnly = false, resume = false, settleOnly = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -45,6 +53,8 @@ int main(int argc, char** argv) {
       resume = true;
     } else if (a == "-settleOnly") {
       settleOnly = true;
+    } else if (a == "-reuse" && i + 1 < argc) {
+      reuseDir = argv[++i];
     } else if (a == "-parallel") {
       // Ranks come from mpirun; accepted for the OpenFOAM convention.
     } else if (a == "-help" || a == "--help") {
@@ -71,7 +81,19 @@ int main(int argc, char** argv) {
                 << " particles, time step " << scene.timeStepUsed() << " s (stability limit "
                 << scene.stableTimeStepLimit() << " s, Rayleigh time " << scene.rayleighTime()
                 << " s)" << std::endl;
-    if (!checkOnly && settleOnly) {
+    if (!reuseDir.empty() && !settleOnly)
+      throw InputError("mixflowDem: option -reuse " + reuseDir + " needs -settleOnly");
+    if (!checkOnly && settleOnly && !reuseDir.empty()) {
+      const dem::SettleReport r = dem::reuseSettledSample(scene, reuseDir, rank);
+      MPI_Barrier(MPI_COMM_WORLD);  // rank 0's copy is complete before anyone goes on
+      if (rank == 0)
+        std::cout << "[dem] settled sample reused from " << reuseDir << " (fingerprint "
+                  << r.fingerprint << ", the same settling inputs): " << r.particles
+                  << " particles, height " << r.settledHeight << " m, sample solid fraction "
+                  << r.sampleFraction << "; settled in " << r.settleTime << " s there\n"
+                  << "[mixflowDem] settled sample saved: " << caseDir
+                  << "/dem/settled.{restart,state}" << std::endl;
+    } else if (!checkOnly && settleOnly) {
       dem::DemDriver driver(scene, MPI_COMM_WORLD, std::cout);
       driver.writeSettledState(driver.settle());
       if (rank == 0)

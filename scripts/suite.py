@@ -533,9 +533,44 @@ def truncate_series(path, t_last):
         f.writelines(keep)
 
 
-def plan_scene(scene, work, tier, ranks):
+def has_fingerprint(state_path):
+    """True if a settled.state records its settling inputs' fingerprint (mixflowDem -reuse)."""
+    try:
+        with open(state_path) as f:
+            return re.search(r"\bfingerprint\s+\"[0-9a-f]+\"", f.read()) is not None
+    except OSError:
+        return False
+
+
+def plan_settled(p, settled_from):
+    """Mixture scenes: the settled sample Allrun reuses (its SETTLED_DIR), if any: the one of
+    --settled-from, else, rerunning a copy that failed after settling, its own."""
+    if p.get("content") != "mixture" or p["status"] not in ("fresh", "restart"):
+        return
+    if settled_from:
+        d = os.path.join(settled_from, p["scene"], "dem")
+        if not os.path.isfile(os.path.join(d, "settled.state")):
+            p["status"], p["error"] = "error", (f"--settled-from: {d}/settled.state: cannot open "
+                                                "file: no settled sample of this scene there")
+            return
+        p["settled"] = d
+    elif p["status"] == "restart" and has_fingerprint(
+            os.path.join(p["run_dir"], "dem", "settled.state")):
+        p["settled"] = os.path.join(p["run_dir"], "dem")
+    if p.get("settled"):
+        p["command"] += f" {p['settled']} (reusing its settled sample)"
+
+
+def plan_scene(scene, work, tier, ranks, settled_from=None):
     """What run_scene would do: dict with status fresh (copy and run), resume, restart (rerun an
-    existing copy from its start), done, missing (no case) or error (with the message)."""
+    existing copy from its start), done, missing (no case) or error (with the message). A mixture
+    scene reuses a settled sample (plan_settled) when one can be."""
+    p = _plan_scene(scene, work, tier, ranks)
+    plan_settled(p, settled_from)
+    return p
+
+
+def _plan_scene(scene, work, tier, ranks):
     src = os.path.join(CASES, scene)
     run_dir = os.path.join(work, scene)
     p = {"scene": scene, "case": src, "run_dir": run_dir}
@@ -603,7 +638,8 @@ def execute(p, ranks, label, progress_every, samples=None, poll=1.0):
             f.write(text)
         for name in ("timeSeries.csv", "profiles.csv"):
             truncate_series(os.path.join(run_dir, "postProcessing", "liquid", name), t)
-    cmd = resume_command(content, ranks) if p["status"] == "resume" else ["./Allrun", str(ranks)]
+    cmd = resume_command(content, ranks) if p["status"] == "resume" else \
+        ["./Allrun", str(ranks)] + ([p["settled"]] if p.get("settled") else [])
     t_end = end_time(run_dir)
     log = open(os.path.join(run_dir, "log.suite"), "a")
     log.write(f"\n=== {time.strftime('%Y-%m-%d %H:%M:%S')} {' '.join(cmd)}\n")
@@ -872,6 +908,11 @@ def main(argv=None):
     ap.add_argument("--set", action="append", default=[], metavar="FILE.ENTRY=VALUE",
                     help="override a case entry after the tier's, e.g. couplingProperties."
                     "dragIntegration=implicit (repeatable; recorded in system/tier; needs its own --work)")
+    ap.add_argument("--settled-from", metavar="WORK",
+                    help="mixture scenes reuse the sample settled in WORK/<scene>/dem (an earlier "
+                    "run directory) instead of settling, if settled from the same inputs (mixflowDem "
+                    "-reuse checks the fingerprint and stops at the first difference); e.g. a "
+                    "--set study of the liquid or the coupling on the same grains")
     args = ap.parse_args(argv)
     try:
         tier = Tier(args.tier)
@@ -887,7 +928,8 @@ def main(argv=None):
         args.cost_only = True
     if args.cost_only:
         return cost_run(args, tier, scenes, args.work)
-    plans = [plan_scene(s, args.work, tier, args.np) for s in scenes]
+    settled_from = os.path.abspath(args.settled_from) if args.settled_from else None
+    plans = [plan_scene(s, args.work, tier, args.np, settled_from) for s in scenes]
     print_plan(plans, tier, args)
     errors = [p for p in plans if p["status"] == "error"]
     if errors:

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "CouplingProperties.h"
@@ -9,6 +10,7 @@
 #include "Dictionary.h"
 #include "LiggghtsCommands.h"
 #include "Scene.h"
+#include "SettledSample.h"
 
 namespace mixflow::cfd {
 
@@ -26,6 +28,26 @@ MixtureSetup prepareMixture(LiquidCase& c) {
                      c.caseDir + " -settleOnly first; Allrun does)");
   const Dictionary st = Dictionary::readFile(statePath.string());
   const dem::SettleReport settled = dem::readSettledDict(st.subDict("settled"));
+  // The DEM settings may have been edited since the settling: the restart would then carry
+  // overlaps and a box made for others (dem/SettledSample.h). Samples settled before the inputs
+  // were recorded have no fingerprint and are taken as they are.
+  if (!settled.fingerprint.empty()) {
+    const std::string inputs = dem::settleInputs(scene);
+    if (dem::fingerprintOf(inputs) != settled.fingerprint) {
+      const fs::path recorded = fs::path(c.caseDir) / "dem" / "settled.inputs";
+      std::string why;
+      if (fs::exists(recorded)) {
+        std::ifstream in(recorded);
+        const std::string there((std::istreambuf_iterator<char>(in)), {});
+        why = "; first difference (the case now against the sample): " +
+              dem::firstDifference(inputs, there);
+      }
+      throw InputError(statePath.string() +
+                       ": entry 'settled/fingerprint': the sample was "
+                       "settled from other DEM inputs than the case now has" +
+                       why + ". Settle again (Allrun does)");
+    }
+  }
   m.particles = settled.particles;
   m.settledHeight = settled.settledHeight;
   if (m.settledHeight <= 0 || m.settledHeight >= c.channel.height)

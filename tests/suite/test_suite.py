@@ -14,7 +14,9 @@ Checks, each exact:
      without an error, never touches the channel length/height or the sample's L and H, and sets
      what docs/suite.md says for P, W and HB-I;
   4. `suite.py --tier quick --scenes P-I-I --dry-run` prints the plan and writes nothing;
-  5. the resume helpers: the last time of a CSV, cutting a liquid time series after a restart
+  5. settled samples: --settled-from and a rerun's own fingerprinted sample are reused by mixture
+     scenes only, a missing one refused;
+  6. the resume helpers: the last time of a CSV, cutting a liquid time series after a restart
      time, the liquid restart time found from written time directories.
 """
 import os
@@ -225,7 +227,40 @@ for bad_set, words in (("couplingProperties.dragIntegration", "FILE.entry=VALUE"
     ok, msg = raises(lambda b=bad_set: suite.Tier("quick").set_entries([b]), *words.split("|"))
     check(ok, f"--set '{bad_set}' refused ({msg})")
 
-# 5. Resume helpers.
+# A mixture scene reuses a settled sample: --settled-from's (which must hold one), else, rerun
+# after a failure, its own when that records a fingerprint; never for a dry scene.
+other = os.path.join(work, "other")
+os.makedirs(os.path.join(other, "HB+P", "dem"))
+with open(os.path.join(other, "HB+P", "dem", "settled.state"), "w") as f:
+    f.write('settled { particles 1; fingerprint "0123456789abcdef"; }\n')
+p = suite.plan_scene("HB+P", os.path.join(work, "fresh"), suite.Tier("quick"), 1, other)
+check(p["status"] == "fresh" and p["settled"] == os.path.join(other, "HB+P", "dem")
+      and "reusing" in p["command"], "--settled-from: a fresh mixture copy reuses that sample")
+p = suite.plan_scene("B+P", os.path.join(work, "fresh"), suite.Tier("quick"), 1, other)
+check(p["status"] == "error" and "B+P/dem/settled.state" in p["error"],
+      "--settled-from without that scene's sample is refused, naming the file")
+check("settled" not in suite.plan_scene("P", os.path.join(work, "fresh"), suite.Tier("quick"), 1, other),
+      "--settled-from leaves a dry scene alone")
+own = os.path.join(work, "own")
+os.makedirs(os.path.join(own, "HB+P", "dem"))
+suite.make_copy("HB+P", os.path.join(own, "HB+P", "copy"), suite.Tier("quick"),
+                *suite.tier_edits(os.path.join(ROOT, "cases", "HB+P"), suite.Tier("quick"), "HB+P"),
+                "mixture")
+for name in os.listdir(os.path.join(own, "HB+P", "copy")):
+    shutil.move(os.path.join(own, "HB+P", "copy", name), os.path.join(own, "HB+P", name))
+os.rmdir(os.path.join(own, "HB+P", "copy"))
+state = os.path.join(own, "HB+P", "dem", "settled.state")
+with open(state, "w") as f:
+    f.write("settled { particles 1; }\n")
+p = suite.plan_scene("HB+P", own, suite.Tier("quick"), 1)
+check(p["status"] == "restart" and "settled" not in p, "a rerun settles again without a fingerprint")
+with open(state, "w") as f:
+    f.write('settled { particles 1; fingerprint "0123456789abcdef"; }\n')
+p = suite.plan_scene("HB+P", own, suite.Tier("quick"), 1)
+check(p["status"] == "restart" and p["settled"] == os.path.dirname(state),
+      "a rerun reuses its own fingerprinted sample")
+
+# 6. Resume helpers.
 csvp = os.path.join(work, "ts.csv")
 with open(csvp, "w") as f:
     f.write("time_s,x\n0,1\n0.1,2\n0.2,3\n0.30000001,4\n")

@@ -1,0 +1,125 @@
+#include "SettledSample.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "DemDriver.h"
+#include "Dictionary.h"
+#include "LiggghtsCommands.h"
+#include "SampleFill.h"
+
+namespace mixflow::dem {
+
+namespace fs = std::filesystem;
+
+namespace {
+// Bump when DemDriver::settle changes in a way its commands and settings do not show.
+constexpr const char* kSettleVersion = "mixflow settling 1";
+// The data file's path in the inputs text (the real one names the case directory).
+constexpr const char* kDataFileName = "dem/initial.data";
+
+void addLines(std::ostringstream& out, const std::vector<std::string>& lines) {
+  for (const auto& l : lines) out << l << '\n';
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string() + ": cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+std::string settleInputs(const Scene& s) {
+  const Fill fill = makeLooseFill(s);
+  const std::string data = dataFileText(fill, s.particles, channelBox(s, fill.top));
+  const double dt = s.timeStepUsed();
+  std::ostringstream out;
+  out.precision(17);
+  out << kSettleVersion << '\n'
+      << kDataFileName << ": " << fill.centres.size() << " particles, fnv1a " << fingerprintOf(data)
+      << '\n';
+  addLines(out, sceneSetupCommands(s, kDataFileName, dt));
+  out << "# settling materials\n";
+  addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+  out << "# settling: check every " << kSettleCheckInterval << " s, at most " << s.settle.maxTime
+      << " s, until the mean kinetic energy < " << s.settle.kineticTolerance << " m g d\n";
+  out << "# then the real materials, relaxed for " << s.settle.relaxTime << " s\n";
+  addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
+                                 s.particles.rollingFriction));
+  return out.str();
+}
+
+std::string fingerprintOf(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;  // FNV-1a 64 prime
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::string firstDifference(const std::string& here, const std::string& there) {
+  std::istringstream a(here), b(there);
+  std::string la, lb;
+  for (;;) {
+    const bool ha = static_cast<bool>(std::getline(a, la));
+    const bool hb = static_cast<bool>(std::getline(b, lb));
+    if (!ha && !hb) return "";
+    if (!ha) la = "(nothing)";
+    if (!hb) lb = "(nothing)";
+    if (la != lb) return "'" + la + "' against '" + lb + "'";
+  }
+}
+
+SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank) {
+  const fs::path from(dir);
+  const fs::path statePath = from / "settled.state";
+  if (!fs::exists(statePath))
+    throw InputError(statePath.string() + ": cannot open file: no settled sample to reuse there");
+  const Dictionary st = Dictionary::readFile(statePath.string());
+  const SettleReport r = readSettledDict(st.subDict("settled"));
+  const std::string here = settleInputs(s);
+  if (r.fingerprint.empty())
+    throw InputError(statePath.string() +
+                     ": entry 'settled/fingerprint' is missing: the sample was settled before "
+                     "mixflow recorded its inputs, so whether it is this case's cannot be "
+                     "checked; settle again (without reusing)");
+  if (r.fingerprint != fingerprintOf(here)) {
+    std::string why;
+    const fs::path inputs = from / "settled.inputs";
+    if (fs::exists(inputs))
+      why = "; first difference (this case against that sample): " +
+            firstDifference(here, readText(inputs));
+    throw InputError(statePath.string() + ": entry 'settled/fingerprint': '" + r.fingerprint +
+                     "' is not this case's settling ('" + fingerprintOf(here) +
+                     "'): the sample was made with other particles, walls, contacts, DEM step "
+                     "or settling settings" +
+                     why + ". Settle again (without reusing)");
+  }
+  const fs::path restart = from / "settled.restart";
+  if (!fs::exists(restart)) throw InputError(restart.string() + ": cannot open file");
+  const fs::path to = fs::path(s.caseDir) / "dem";
+  const bool same = fs::exists(to) && fs::equivalent(from, to);
+  if (rank == 0 && !same) {
+    fs::create_directories(to);
+    fs::copy_file(restart, to / "settled.restart", fs::copy_options::overwrite_existing);
+    // The restart path in settled.state is relative to the case directory: the same here. The
+    // copy says where it came from (replacing an earlier reusedFrom).
+    std::istringstream state(readText(statePath));
+    std::ofstream copy(to / "settled.state");
+    for (std::string line; std::getline(state, line);)
+      if (line.rfind("reusedFrom", 0) != 0) copy << line << '\n';
+    copy << "reusedFrom \"" << fs::absolute(from).lexically_normal().string() << "\";\n";
+    std::ofstream(to / "settled.inputs") << here;
+  }
+  return r;
+}
+
+}  // namespace mixflow::dem

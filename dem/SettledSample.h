@@ -1,0 +1,39 @@
+// SettledSample: what a mixture scene's settled sample (dem/settled.{restart,state}) was made
+// from, so that a later run reuses it only where settling again would make the very same sample.
+//
+// Settling at the paper's stiffness takes about an hour for the full sample, while a study of the
+// liquid, the coupling, the mesh or the exchange interval keeps the same grains: reusing the
+// sample saves that hour and takes the packing's run-to-run noise out of the comparison. The
+// inputs of a settling are the loose fill (dem/initial.data), the LIGGGHTS set-up (contacts,
+// walls, gate, box, time step), the settling and final materials and the settling schedule; they
+// are written as text to dem/settled.inputs, and their hash is settled.state's `fingerprint`.
+// The rank count is not an input: a restart file reads on any number of ranks, and ranks change
+// a settling only by round-off.
+#pragma once
+
+#include <string>
+
+#include "CollapseRecorder.h"
+#include "Scene.h"
+
+namespace mixflow::dem {
+
+// Simulated seconds of settling between two kinetic-energy checks (DemDriver::settle).
+constexpr double kSettleCheckInterval = 0.02;
+
+// The inputs of settling scene s, one item per line (the loose fill by its hash and count).
+std::string settleInputs(const Scene& s);
+
+// FNV-1a 64-bit hash of text, as 16 hexadecimal digits.
+std::string fingerprintOf(const std::string& text);
+
+// The first line where two inputs texts differ, as "'here' against 'there'" (empty if equal).
+std::string firstDifference(const std::string& here, const std::string& there);
+
+// Takes the settled sample of directory dir (settled.{restart,state,inputs}, e.g. another run's
+// dem/) into s's case when its fingerprint is that of s's settling; otherwise throws InputError
+// naming dir/settled.state, the entry 'fingerprint' and the first input that differs. Every rank
+// checks; rank 0 copies. Returns the sample's report.
+SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank);
+
+}  // namespace mixflow::dem
