@@ -21,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "CoupledResume.h"
 #include "CouplingProperties.h"
 #include "DemLink.h"
 #include "FoamCellLocator.H"
@@ -86,7 +87,8 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
                            const Foam::incompressibleTwoPhaseMixture& mixture,
                            const Foam::incompressibleTurbulenceModel& turbulence,
                            const Foam::uniformDimensionedVectorField& g,
-                           Foam::scalar solverVoidfractionMin, const Foam::word& viscousStress)
+                           Foam::scalar solverVoidfractionMin, const Foam::word& viscousStress,
+                           bool resume)
     : mesh_(mesh),
       voidfraction_(voidfraction),
       Ksl_(Ksl),
@@ -98,7 +100,8 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
       p_(p),
       mixture_(mixture),
       turbulence_(turbulence),
-      g_(g) {
+      g_(g),
+      resume_(resume) {
   const Foam::Time& runTime = mesh.time();
   const std::string caseDir = runTime.globalPath();
   const std::string propsFile = caseDir + "/constant/couplingProperties";
@@ -250,6 +253,26 @@ void FoamCoupling::startDem() {
   demProcessorGrid(script);
   // ${mixflowCase} in the script is the case directory (scripts stay valid when a case moves).
   dem_->command("variable mixflowCase string " + caseDir);
+  // Resuming: the particles come from the last field write's restart instead of the script's
+  // read_restart (the settled sample); every other line (contacts, walls) is the script's.
+  std::string resumeRestart;
+  if (resume_) {
+    try {
+      const CoupledResumeState st = CoupledResumeState::read(caseDir);
+      const double t = runTime.value();
+      if (std::abs(t - st.time) > 1e-6 * std::max(runTime.deltaTValue(), 1e-300))
+        fatal(CoupledResumeState::path(caseDir) + ": entry 'time': " + std::to_string(st.time) +
+              " s, but the fluid starts at " + runTime.timeName() +
+              " s: set startFrom latestTime and remove the time directories after " + st.timeName +
+              " (scripts/ResumeFunctions, resumeMixtureCase, does both)");
+      resumeRestart = caseDir + "/" + st.restartFile;
+      Foam::Info << "Coupling: resuming at t = " << st.timeName.c_str() << " s from "
+                 << st.restartFile.c_str() << Foam::endl;
+    } catch (const InputError& e) {
+      fatal(e.what());
+    }
+  }
+  bool restartReplaced = false;
   std::string line, pending;
   while (std::getline(in, line)) {
     const size_t hash = line.find('#');
@@ -263,8 +286,16 @@ void FoamCoupling::startDem() {
     line = pending + line;
     pending.clear();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    if (resume_ && line.compare(line.find_first_not_of(" \t"), 12, "read_restart") == 0) {
+      line = "read_restart " + resumeRestart;
+      restartReplaced = true;
+    }
     dem_->command(line);
   }
+  if (resume_ && !restartReplaced)
+    fatal(script +
+          ": -resume needs a DEM script that starts from read_restart (a mixture "
+          "scene's system/in.liggghts)");
 
   link_ = std::make_unique<DemLink>(*dem_, props_->dragIntegration == "held"
                                                ? DemLink::DragIntegration::held
@@ -841,6 +872,10 @@ void FoamCoupling::writeLogHeader() {
   if (rank != 0) return;
   const std::string dir = std::string(mesh_.time().globalPath()) + "/postProcessing/coupling";
   std::filesystem::create_directories(dir);
+  if (resume_) {  // resumeMixtureCase cut the rows from the resumed time on: append
+    csv_.open(dir + "/exchange.csv", std::ios::app);
+    return;
+  }
   csv_.open(dir + "/exchange.csv");
   csv_ << "# mixflowCoupled exchange log: one line per exchange (every logEvery). Volumes in m3,"
           " forces in N.\n"

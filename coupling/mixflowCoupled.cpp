@@ -46,6 +46,10 @@ int runCoupled(int argc, char* argv[]) {
   argList::addNote(
       "mixflowCoupled: mixflowFoam (VOF, formulation B) two-way coupled with LIGGGHTS particles "
       "(constant/couplingProperties)");
+  argList::addBoolOption("resume",
+                         "continue a mixture scene from its last field write "
+                         "(dem/coupled.resume.state; scripts/ResumeFunctions resumeMixtureCase "
+                         "sets startFrom and cuts the outputs' later rows first)");
 
   // clang-format off
 #include "setRootCase.H"
@@ -66,9 +70,10 @@ int runCoupled(int argc, char* argv[]) {
                          << exit(FatalError);
   }
 
+  const bool resume = args.found("resume");
   mixflow::coupling::FoamCoupling coupling(mesh, voidfraction, Ksl, Us, fSource, solidResponse, U,
                                            rho, p, mixture, turbulence(), g, voidfractionMin,
-                                           viscousStress);
+                                           viscousStress, resume);
   coupling.exchange();  // eps_f at the start time, forces for the first DEM interval
   // The particles were there before the start: eps_f(0) is also the old-time level (otherwise
   // d(eps_f)/dt of the start would see the change from the field read at construction).
@@ -76,11 +81,15 @@ int runCoupled(int argc, char* argv[]) {
   // A mixture scene (constant/sceneProperties) also records the granular outputs of a dry scene.
   std::unique_ptr<mixflow::coupling::MixtureMonitor> monitor;
   try {
-    monitor = mixflow::coupling::MixtureMonitor::createIfMixture(runTime.globalPath(),
-                                                                 coupling.demSession(), std::cout);
+    monitor = mixflow::coupling::MixtureMonitor::createIfMixture(
+        runTime.globalPath(), coupling.demSession(), std::cout, resume);
   } catch (const std::exception& e) {
     FatalErrorInFunction << e.what() << exit(FatalError);
   }
+  if (resume && !monitor)
+    FatalErrorInFunction << "-resume continues mixture scenes (constant/sceneProperties with "
+                            "content mixture) only"
+                         << exit(FatalError);
   {
     // clang-format off
 #include "updateCouplingFields.H"
@@ -132,7 +141,11 @@ int runCoupled(int argc, char* argv[]) {
     coupling.resampleFluidVelocity();  // pressureCoupling mixture: the next interval's U
 
     runTime.write();
-    if (monitor) monitor->afterStep();
+    if (monitor) {
+      monitor->afterStep();
+      // After the step's granular row, so that a resumed run finds its counters up to date.
+      if (runTime.writeTime()) monitor->afterWrite(runTime.timeName());
+    }
 
     runTime.printExecutionTime(Info);
   }

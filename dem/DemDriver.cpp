@@ -147,7 +147,7 @@ void DemDriver::writeResumeState(const CollapseReport& rep, bool profileDone) {
   const fs::path dir = fs::path(scene_.caseDir) / "dem";
   const std::string file = (dir / ("restart_" + std::to_string(restartSlot_) + ".bin")).string();
   restartSlot_ = 1 - restartSlot_;
-  lig_->command("write_restart " + file);
+  lig_->writeRestart(file);
   if (rank_ != 0) return;
   const fs::path tmp = dir / "resume.state.tmp";
   {
@@ -251,7 +251,7 @@ void DemDriver::writeSettledState(const SettleReport& st) {
   // Step 0 = the gate opening for the coupled run that restarts from this file (after a
   // read_restart LIGGGHTS accepts reset_timestep only right before a run).
   lig_->command("reset_timestep 0");
-  lig_->command("write_restart " + (dir / "settled.restart").string());
+  lig_->writeRestart((dir / "settled.restart").string());
   if (rank_ != 0) return;
   {
     std::ofstream f(dir / "settled.state.tmp");

@@ -56,6 +56,11 @@ void LiggghtsSession::commands(const std::vector<std::string>& lines) {
   for (const auto& l : lines) command(l);
 }
 
+void LiggghtsSession::writeRestart(const std::string& file) {
+  command("write_restart " + file);
+  needSetup_ = true;
+}
+
 void LiggghtsSession::run(long nSteps) {
   if (nSteps <= 0) return;
   const double t0 = MPI_Wtime();

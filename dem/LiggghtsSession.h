@@ -30,6 +30,11 @@ class LiggghtsSession {
   // Advance nSteps; setup is skipped when nothing changed since the last run (faster chunks).
   void run(long nSteps);
   void invalidateSetup() { needSetup_ = true; }
+  // write_restart, and a full setup before the next run: the command re-inits LIGGGHTS and moves
+  // atoms and ghosts (comm exchange and borders) without rebuilding the neighbour lists, so a
+  // `run pre no` after it computes contacts on stale lists (measured on a collapsing sample:
+  // 11 % more kinetic energy 1000 steps later; with the setup, equal to round-off).
+  void writeRestart(const std::string& file);
   // Wall seconds spent inside LIGGGHTS `run` commands (the rest is the driver's own work).
   double runSeconds() const { return runSeconds_; }
 

@@ -596,6 +596,10 @@ def _plan_scene(scene, work, tier, ranks):
             p["texts"], p["records"] = {}, []
             if p["content"] == "particles" and os.path.isfile(os.path.join(run_dir, "dem", "resume.state")):
                 p["status"], p["command"] = "resume", f"mixflowDem -resume ({ranks} ranks)"
+            elif p["content"] == "mixture" and os.path.isfile(
+                    os.path.join(run_dir, "dem", "coupled.resume.state")):
+                p["status"] = "resume"
+                p["command"] = f"mixflowCoupled -resume from its last field write ({ranks} ranks)"
             elif p["content"] == "liquid" and liquid_restart_time(run_dir, ranks):
                 p["status"] = "resume"
                 p["restart_time"] = liquid_restart_time(run_dir, ranks)
@@ -621,7 +625,7 @@ def run_env():
 
 
 def resume_command(content, ranks):
-    fn = "resumeDemCase" if content == "particles" else "resumeLiquidCase"
+    fn = {"particles": "resumeDemCase", "mixture": "resumeMixtureCase"}.get(content, "resumeLiquidCase")
     return ["bash", "-c", f'. "$1" && {fn} "$2"', "ResumeFunctions",
             os.path.join(ROOT, "scripts", "ResumeFunctions"), str(ranks)]
 

@@ -15,7 +15,7 @@ Checks, each exact:
      what docs/suite.md says for P, W and HB-I;
   4. `suite.py --tier quick --scenes P-I-I --dry-run` prints the plan and writes nothing;
   5. settled samples: --settled-from and a rerun's own fingerprinted sample are reused by mixture
-     scenes only, a missing one refused;
+     scenes only, a missing one refused; a mixture copy with a coupled resume state resumes;
   6. the resume helpers: the last time of a CSV, cutting a liquid time series after a restart
      time, the liquid restart time found from written time directories.
 """
@@ -259,6 +259,10 @@ with open(state, "w") as f:
 p = suite.plan_scene("HB+P", own, suite.Tier("quick"), 1)
 check(p["status"] == "restart" and p["settled"] == os.path.dirname(state),
       "a rerun reuses its own fingerprinted sample")
+open(os.path.join(own, "HB+P", "dem", "coupled.resume.state"), "w").close()
+p = suite.plan_scene("HB+P", own, suite.Tier("quick"), 1)
+check(p["status"] == "resume" and "resumeMixtureCase" in " ".join(suite.resume_command("mixture", 1)),
+      "a mixture copy with dem/coupled.resume.state resumes (resumeMixtureCase)")
 
 # 6. Resume helpers.
 csvp = os.path.join(work, "ts.csv")

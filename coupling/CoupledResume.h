@@ -1,0 +1,34 @@
+// CoupledResume: the state a mixture scene's coupled run writes with every field write, so that
+// after a failure (or with a later endTime) `mixflowCoupled -resume` continues from the last
+// written time instead of starting again (scripts/ResumeFunctions, resumeMixtureCase).
+//
+// The fluid's state is its time directory (U, p_rgh, alpha, phi, the function objects' uniform/
+// state); the particles' is a LIGGGHTS restart written at the same step (contacts and their
+// history included), in two alternating files so that a failure while writing one leaves the
+// other and its state file intact. The granular outputs' counters come back from this file. The
+// coupling's forces are not stored: the resumed run's first exchange computes them from the
+// fluid at the written time, as a run's start does (the uninterrupted run used the fluid one CFD
+// step earlier for that interval; tests/coupling/test_coupled_resume.py measures the difference).
+#pragma once
+
+#include <string>
+
+namespace mixflow::coupling {
+
+struct CoupledResumeState {
+  std::string restartFile;  // LIGGGHTS restart, relative to the case directory
+  std::string timeName;     // the OpenFOAM time directory written with it
+  double time = 0;          // s since the gate opened
+  long step = 0;            // DEM step (counted from the gate opening)
+  long lastSampleStep = 0;  // step of MixtureMonitor's last granular row (its sampling chain)
+  long deletedOutlet = 0, deletedTop = 0, lost = 0;  // MixtureMonitor's counts so far
+  bool profileDone = false;                          // the u(y) profile was written
+
+  static std::string path(const std::string& caseDir);  // <case>/dem/coupled.resume.state
+  // Throws InputError naming the file if it is missing or malformed.
+  static CoupledResumeState read(const std::string& caseDir);
+  // Written to a temporary file, then renamed (never half-written).
+  void write(const std::string& caseDir) const;
+};
+
+}  // namespace mixflow::coupling
