@@ -2,7 +2,7 @@
 """A coupled mixture run continues from its last field write (resumeMixtureCase, mixflowCoupled
 -resume) as if it had not stopped.
 
-usage: test_coupled_resume.py ROOT BINDIR WORKDIR
+usage: test_coupled_resume.py ROOT BINDIR WORKDIR [RANKS]
 
 The scene is the quick HB&P (cases/W+P-quick with case HB+P's liquid): a held column, whose
 evolution is deterministic (serial and 2 ranks agreed to 4e-5 J/m over 1.5 s, results/mixtures).
@@ -27,6 +27,7 @@ import subprocess
 import sys
 
 root, bindir, work = (os.path.abspath(a) for a in sys.argv[1:4])
+ranks = sys.argv[4] if len(sys.argv) > 4 else "1"  # every run and the resume on RANKS ranks
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""), MIXFLOW_ROOT=root,
@@ -63,7 +64,7 @@ def run(cmd, cwd):
 
 
 def resume(d):
-    return run(["bash", "-c", f'. "{root}/scripts/ResumeFunctions" && resumeMixtureCase 1'], d)
+    return run(["bash", "-c", f'. "{root}/scripts/ResumeFunctions" && resumeMixtureCase {ranks}'], d)
 
 
 def series(d, rel):
@@ -77,19 +78,20 @@ def col(rows, name):
 
 
 a, b = make("a", 0.15), make("b", 0.05)
-rc, out = run(["./Allrun", "1"], a)
+rc, out = run(["./Allrun", ranks], a)
 if rc != 0:
     sys.exit("run A failed:\n" + out[-3000:])
-rc, out = run(["./Allrun", "1", os.path.join(a, "dem")], b)
+rc, out = run(["./Allrun", ranks, os.path.join(a, "dem")], b)
 if rc != 0:
     sys.exit("run B (first part) failed:\n" + out[-3000:])
 state = open(os.path.join(b, "dem", "coupled.resume.state")).read()
 t_w = float(re.search(r"^time\s+([^;]+);", state, re.M).group(1))
 check(abs(t_w - 0.05) < 1e-3, f"B wrote its resume state at its last field write ({t_w:.6f} s)")
 
-# What a failure after the write leaves behind.
-os.makedirs(os.path.join(b, "0.0700000"))
-open(os.path.join(b, "0.0700000", "U"), "w").write("half written")
+# What a failure after the write leaves behind (a decomposed run writes into processor*/).
+later = os.path.join(b, "0.0700000" if ranks == "1" else "processor0/0.0700000")
+os.makedirs(later)
+open(os.path.join(later, "U"), "w").write("half written")
 for rel in ("postProcessing/liquid/timeSeries.csv", "postProcessing/dem/timeSeries.csv",
             "postProcessing/coupling/exchange.csv"):
     with open(os.path.join(b, rel), "a") as f:
@@ -99,7 +101,7 @@ rc, out = resume(b)
 check(rc == 0 and "resume: done" in out, f"resumeMixtureCase finishes (exit {rc})")
 if rc != 0:
     print(out[-3000:])
-check(not os.path.exists(os.path.join(b, "0.0700000")), "the later time directory is removed")
+check(not os.path.exists(later), "the later time directory is removed")
 
 for rel in ("postProcessing/liquid/timeSeries.csv", "postProcessing/coupling/exchange.csv"):
     ta, tb = col(series(a, rel), "time_s" if "liquid" in rel else "time"), \
