@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -242,6 +243,34 @@ double Dictionary::scalar(const std::string& key, const Range& range) const {
 
 double Dictionary::scalarOr(const std::string& key, double def, const Range& range) const {
   return has(key) ? scalar(key, range) : def;
+}
+
+namespace {
+bool isNumber(const std::string& tok) {
+  char* end = nullptr;
+  std::strtod(tok.c_str(), &end);
+  return !tok.empty() && end == tok.c_str() + tok.size();
+}
+}  // namespace
+
+std::optional<double> Dictionary::scalarOrAuto(const std::string& key, const Range& range) const {
+  if (!has(key)) return std::nullopt;
+  const Entry& e = entry(key);
+  if (!e.dict && text(key) == "auto") return std::nullopt;
+  if (e.dict || e.tokens.size() != 1 || !isNumber(e.tokens[0]))
+    fail(key, "'" + (e.dict ? std::string("{...}") : text(key)) +
+                  "' is not allowed: auto or a number in " + range.str());
+  return scalar(key, range);
+}
+
+std::optional<long> Dictionary::integerOrAuto(const std::string& key, long lo, long hi) const {
+  if (!has(key)) return std::nullopt;
+  const Entry& e = entry(key);
+  if (!e.dict && text(key) == "auto") return std::nullopt;
+  if (e.dict || e.tokens.size() != 1 || !isNumber(e.tokens[0]))
+    fail(key, "'" + (e.dict ? std::string("{...}") : text(key)) +
+                  "' is not allowed: auto or a whole number in [" + num(lo) + ", " + num(hi) + "]");
+  return integer(key, lo, hi);
 }
 
 long Dictionary::integer(const std::string& key, long lo, long hi) const {

@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,6 +57,10 @@ class Dictionary {
   double scalarOr(const std::string& key, double def, const Range& range) const;
   long integer(const std::string& key, long lo, long hi) const;
   long integerOr(const std::string& key, long def, long lo, long hi) const;
+  // Entries whose default is chosen by the program (`auto`): empty when absent or `auto`, else the
+  // number, checked like scalar()/integer(); anything else is refused naming both choices.
+  std::optional<double> scalarOrAuto(const std::string& key, const Range& range) const;
+  std::optional<long> integerOrAuto(const std::string& key, long lo, long hi) const;
   std::string word(const std::string& key, const std::vector<std::string>& allowed) const;
   std::string wordOr(const std::string& key, const std::string& def,
                      const std::vector<std::string>& allowed) const;

@@ -68,8 +68,7 @@ void readDem(const Dictionary& d, DemSpec& m) {
                "arrestFrontDiameters", "arrestWindow", "processors", "settle", "savage"});
   m.youngModulusFactor =
       d.scalarOr("youngModulusFactor", m.youngModulusFactor, Range::openClosed(0.0, 1.0));
-  if (d.has("timeStep") && d.text("timeStep") != "auto")
-    m.timeStep = d.scalar("timeStep", Range::positive());
+  if (const auto v = d.scalarOrAuto("timeStep", Range::positive())) m.timeStep = *v;
   m.rayleighFraction = d.scalarOr("rayleighFraction", m.rayleighFraction, Range::openClosed(0, 1));
   m.maxRayleighFraction =
       d.scalarOr("maxRayleighFraction", m.maxRayleighFraction, Range::openClosed(0, 1));

@@ -131,8 +131,7 @@ void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
                "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",
                "pressureTolerance", "alphaTolerance", "writeFormat", "observables"});
   m.dimensions = static_cast<int>(d.integerOr("dimensions", m.dimensions, 2, 3));
-  if (d.has("cellSize") && d.text("cellSize") != "auto")
-    m.cellSize = d.scalar("cellSize", Range::positive());
+  if (const auto v = d.scalarOrAuto("cellSize", Range::positive())) m.cellSize = *v;
   // Above 1 the MULES-bounded VOF scheme loses boundedness; interFoam tutorials use 0.5 to 1.
   m.maxCo = d.scalarOr("maxCo", m.maxCo, Range::openClosed(0.0, 1.0));
   m.maxAlphaCo = d.scalarOr("maxAlphaCo", m.maxAlphaCo, Range::openClosed(0.0, 1.0));
@@ -142,12 +141,7 @@ void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
     d.fail("deltaT", "value " + shortNum(m.deltaT) + " must not exceed maxDeltaT (" +
                          shortNum(m.maxDeltaT) + " s)");
   // `auto` (the default): chosen from the viscous number once mesh and step are known.
-  if (d.has("nCorrectors") && d.text("nCorrectors") != "auto") {
-    const std::string t = d.text("nCorrectors");
-    if (t.find_first_not_of("0123456789") != std::string::npos)
-      d.fail("nCorrectors", "'" + t + "' is not allowed: auto or a whole number in [1, 20]");
-    m.nCorrectors = static_cast<int>(d.integer("nCorrectors", 1, 20));
-  }
+  if (const auto v = d.integerOrAuto("nCorrectors", 1, 20)) m.nCorrectors = static_cast<int>(*v);
   m.nOuterCorrectors = static_cast<int>(d.integerOr("nOuterCorrectors", m.nOuterCorrectors, 1, 50));
   m.momentumPredictor = d.switchOr("momentumPredictor", m.momentumPredictor);
   m.momentumScheme =
@@ -160,8 +154,7 @@ void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
   ob.allowOnly({"frontThreshold", "sectionX", "minDepth", "froudeDepth"});
   o.frontThreshold = ob.scalarOr("frontThreshold", o.frontThreshold, {0.0, 1.0, true, true});
   o.sectionX = ob.scalarOr("sectionX", o.sectionX, Range::positive());
-  if (ob.has("minDepth") && ob.text("minDepth") != "auto")
-    o.minDepth = ob.scalar("minDepth", Range::positive());
+  if (const auto v = ob.scalarOrAuto("minDepth", Range::positive())) o.minDepth = *v;
   o.froudeDepth = ob.wordOr("froudeDepth", o.froudeDepth, {"surface", "volume"});
 }
 

@@ -67,6 +67,26 @@ TEST(Dictionary, RejectsMalformedInput) {
   EXPECT_THROW(Dictionary::readFile("/nonexistent/dict"), InputError);
 }
 
+TEST(Dictionary, AutoOrNumberEntries) {
+  const Dictionary d = Dictionary::parse(
+      "a auto; b 0.25; c many; n 3; m 2.5; k 40; s { x 1; }\n", "numerics.dict");
+  EXPECT_FALSE(d.scalarOrAuto("a", Range::positive()).has_value());
+  EXPECT_FALSE(d.scalarOrAuto("absent", Range::positive()).has_value());
+  EXPECT_DOUBLE_EQ(*d.scalarOrAuto("b", Range::positive()), 0.25);
+  EXPECT_EQ(*d.integerOrAuto("n", 1, 20), 3);
+  // Each refusal names the file and the entry, and offers both choices.
+  const std::string word = errorOf([&] { d.scalarOrAuto("c", Range::positive()); });
+  EXPECT_NE(word.find("numerics.dict"), std::string::npos) << word;
+  EXPECT_NE(word.find("'many' is not allowed: auto or a number in (0, inf)"), std::string::npos)
+      << word;
+  EXPECT_NE(errorOf([&] { d.integerOrAuto("m", 1, 20); }).find("whole number in [1, 20]"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { d.integerOrAuto("k", 1, 20); }).find("outside the allowed range"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { d.scalarOrAuto("s", Range::any()); }).find("auto or a number"),
+            std::string::npos);
+}
+
 TEST(Range, OpenAndClosedEnds) {
   EXPECT_FALSE(Range::positive().contains(0.0));
   EXPECT_TRUE(Range::nonNegative().contains(0.0));
