@@ -68,8 +68,8 @@ TEST(Dictionary, RejectsMalformedInput) {
 }
 
 TEST(Dictionary, AutoOrNumberEntries) {
-  const Dictionary d = Dictionary::parse(
-      "a auto; b 0.25; c many; n 3; m 2.5; k 40; s { x 1; }\n", "numerics.dict");
+  const Dictionary d =
+      Dictionary::parse("a auto; b 0.25; c many; n 3; m 2.5; k 40; s { x 1; }\n", "numerics.dict");
   EXPECT_FALSE(d.scalarOrAuto("a", Range::positive()).has_value());
   EXPECT_FALSE(d.scalarOrAuto("absent", Range::positive()).has_value());
   EXPECT_DOUBLE_EQ(*d.scalarOrAuto("b", Range::positive()), 0.25);
