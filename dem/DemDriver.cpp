@@ -91,8 +91,6 @@ SettleReport DemDriver::settle() {
   lig_->run(nRelax);
   t += nRelax * dt_;
   SettleReport r = measureSample(t, converged);
-  settleInputs_ = settleInputs(s);
-  r.fingerprint = fingerprintOf(settleInputs_);
   if (rank_ == 0)
     out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
          << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
@@ -253,15 +251,18 @@ void DemDriver::writeSettledState(const SettleReport& st) {
   lig_->command("reset_timestep 0");
   lig_->writeRestart((dir / "settled.restart").string());
   if (rank_ != 0) return;
+  // What it was made from, for a later run that would reuse it (SettledSample.h).
+  const std::string inputs = settleInputs(scene_);
+  SettleReport recorded = st;
+  recorded.fingerprint = fingerprintOf(inputs);
   {
     std::ofstream f(dir / "settled.state.tmp");
     f << "// Written by mixflowDem -settleOnly: the settled sample of a mixture scene.\n"
       << "restartFile \"dem/settled.restart\";   // relative to the case directory\n"
       << "settled\n";
-    writeSettledDict(f, st);
+    writeSettledDict(f, recorded);
   }
-  // What it was made from, for a later run that would reuse it (SettledSample.h).
-  std::ofstream(dir / "settled.inputs") << settleInputs_;
+  std::ofstream(dir / "settled.inputs") << inputs;
   fs::rename(dir / "settled.state.tmp", dir / "settled.state");
 }
 

@@ -55,7 +55,6 @@ class DemDriver {
   std::unique_ptr<CollapseRecorder> rec_;
   int restartSlot_ = 0;
   SettleReport settled_;
-  std::string settleInputs_;  // what settle() started from (SettledSample.h)
 };
 
 }  // namespace mixflow::dem

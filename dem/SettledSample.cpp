@@ -78,6 +78,17 @@ std::string firstDifference(const std::string& here, const std::string& there) {
   }
 }
 
+std::string inputsMismatch(const std::string& here, const std::string& fingerprint,
+                           const std::string& recordedInputs) {
+  const std::string mine = fingerprintOf(here);
+  if (fingerprint == mine) return "";
+  std::string why = "fingerprint '" + fingerprint + "' is not this settling's '" + mine + "'";
+  if (fs::exists(recordedInputs))
+    why += "; first difference (this case against the sample): " +
+           firstDifference(here, readText(recordedInputs));
+  return why;
+}
+
 SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank) {
   const fs::path from(dir);
   const fs::path statePath = from / "settled.state";
@@ -91,18 +102,11 @@ SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank
                      ": entry 'settled/fingerprint' is missing: the sample was settled before "
                      "mixflow recorded its inputs, so whether it is this case's cannot be "
                      "checked; settle again (without reusing)");
-  if (r.fingerprint != fingerprintOf(here)) {
-    std::string why;
-    const fs::path inputs = from / "settled.inputs";
-    if (fs::exists(inputs))
-      why = "; first difference (this case against that sample): " +
-            firstDifference(here, readText(inputs));
-    throw InputError(statePath.string() + ": entry 'settled/fingerprint': '" + r.fingerprint +
-                     "' is not this case's settling ('" + fingerprintOf(here) +
-                     "'): the sample was made with other particles, walls, contacts, DEM step "
-                     "or settling settings" +
-                     why + ". Settle again (without reusing)");
-  }
+  const std::string why = inputsMismatch(here, r.fingerprint, (from / "settled.inputs").string());
+  if (!why.empty())
+    throw InputError(statePath.string() + ": entry 'settled/fingerprint': " + why +
+                     ": the sample was made with other particles, walls, contacts, DEM step or "
+                     "settling settings. Settle again (without reusing)");
   const fs::path restart = from / "settled.restart";
   if (!fs::exists(restart)) throw InputError(restart.string() + ": cannot open file");
   const fs::path to = fs::path(s.caseDir) / "dem";

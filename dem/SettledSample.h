@@ -30,6 +30,12 @@ std::string fingerprintOf(const std::string& text);
 // The first line where two inputs texts differ, as "'here' against 'there'" (empty if equal).
 std::string firstDifference(const std::string& here, const std::string& there);
 
+// Empty if fingerprint is that of `here` (a case's settleInputs); else why not: "fingerprint
+// 'F' is not this settling's 'G'", with the first differing line when the sample's recorded
+// inputs file (its settled.inputs) exists. Used where a sample is reused and where it is prepared.
+std::string inputsMismatch(const std::string& here, const std::string& fingerprint,
+                           const std::string& recordedInputs);
+
 // Takes the settled sample of directory dir (settled.{restart,state,inputs}, e.g. another run's
 // dem/) into s's case when its fingerprint is that of s's settling; otherwise throws InputError
 // naming dir/settled.state, the entry 'fingerprint' and the first input that differs. Every rank

@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "CouplingProperties.h"
@@ -32,21 +31,13 @@ MixtureSetup prepareMixture(LiquidCase& c) {
   // overlaps and a box made for others (dem/SettledSample.h). Samples settled before the inputs
   // were recorded have no fingerprint and are taken as they are.
   if (!settled.fingerprint.empty()) {
-    const std::string inputs = dem::settleInputs(scene);
-    if (dem::fingerprintOf(inputs) != settled.fingerprint) {
-      const fs::path recorded = fs::path(c.caseDir) / "dem" / "settled.inputs";
-      std::string why;
-      if (fs::exists(recorded)) {
-        std::ifstream in(recorded);
-        const std::string there((std::istreambuf_iterator<char>(in)), {});
-        why = "; first difference (the case now against the sample): " +
-              dem::firstDifference(inputs, there);
-      }
-      throw InputError(statePath.string() +
-                       ": entry 'settled/fingerprint': the sample was "
-                       "settled from other DEM inputs than the case now has" +
-                       why + ". Settle again (Allrun does)");
-    }
+    const std::string why =
+        dem::inputsMismatch(dem::settleInputs(scene), settled.fingerprint,
+                            (fs::path(c.caseDir) / "dem" / "settled.inputs").string());
+    if (!why.empty())
+      throw InputError(statePath.string() + ": entry 'settled/fingerprint': " + why +
+                       ": the sample was settled from other DEM inputs than the case now has. "
+                       "Settle again (Allrun does)");
   }
   m.particles = settled.particles;
   m.settledHeight = settled.settledHeight;
