@@ -253,23 +253,24 @@ bool isNumber(const std::string& tok) {
 }
 }  // namespace
 
-std::optional<double> Dictionary::scalarOrAuto(const std::string& key, const Range& range) const {
-  if (!has(key)) return std::nullopt;
+bool Dictionary::absentOrAuto(const std::string& key, const std::string& number) const {
+  if (!has(key)) return true;
   const Entry& e = entry(key);
-  if (!e.dict && text(key) == "auto") return std::nullopt;
+  if (!e.dict && text(key) == "auto") return true;
   if (e.dict || e.tokens.size() != 1 || !isNumber(e.tokens[0]))
-    fail(key, "'" + (e.dict ? std::string("{...}") : text(key)) +
-                  "' is not allowed: auto or a number in " + range.str());
+    fail(key,
+         "'" + (e.dict ? std::string("{...}") : text(key)) + "' is not allowed: auto or " + number);
+  return false;
+}
+
+std::optional<double> Dictionary::scalarOrAuto(const std::string& key, const Range& range) const {
+  if (absentOrAuto(key, "a number in " + range.str())) return std::nullopt;
   return scalar(key, range);
 }
 
 std::optional<long> Dictionary::integerOrAuto(const std::string& key, long lo, long hi) const {
-  if (!has(key)) return std::nullopt;
-  const Entry& e = entry(key);
-  if (!e.dict && text(key) == "auto") return std::nullopt;
-  if (e.dict || e.tokens.size() != 1 || !isNumber(e.tokens[0]))
-    fail(key, "'" + (e.dict ? std::string("{...}") : text(key)) +
-                  "' is not allowed: auto or a whole number in [" + num(lo) + ", " + num(hi) + "]");
+  if (absentOrAuto(key, "a whole number in [" + num(lo) + ", " + num(hi) + "]"))
+    return std::nullopt;
   return integer(key, lo, hi);
 }
 

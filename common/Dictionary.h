@@ -83,6 +83,9 @@ class Dictionary {
     int line = 0;
   };
   const Entry& entry(const std::string& key) const;
+  // scalarOrAuto/integerOrAuto: true when key is absent or `auto`; anything but one number is
+  // refused as "not allowed: auto or <number>".
+  bool absentOrAuto(const std::string& key, const std::string& number) const;
   double toScalar(const std::string& key, const std::string& tok) const;
 
   std::string file_;
