@@ -142,6 +142,9 @@ def main():
     ap.add_argument("--n-correctors", type=int,
                     help="cfdDict nCorrectors, the PISO pressure correctors per fluid step "
                          "(default: the case's, auto: 3 or 10 by the viscous number)")
+    ap.add_argument("--drag-viscosity-max", type=float,
+                    help="couplingProperties DiFeliceDragCoeffs viscosityMax in Pa s, the drag's "
+                         "viscosity bound (default: the case's, none); 1 lets HB&P's column flow")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()
@@ -169,6 +172,8 @@ def main():
         set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
     if a.void_smoothing is not None:
         edit(cp, {"dividedCoeffs": {"smoothing": repr(a.void_smoothing)}})
+    if a.drag_viscosity_max:
+        edit(cp, {"DiFeliceDragCoeffs": {"viscosityMax": repr(a.drag_viscosity_max)}})
     if a.n_correctors:
         edit(os.path.join(cpl, "system", "cfdDict"), {"nCorrectors": str(a.n_correctors)})
     dem_dict = os.path.join(cpl, "system", "demDict")
@@ -264,7 +269,7 @@ def main():
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,
-        "n_correctors": a.n_correctors,
+        "n_correctors": a.n_correctors, "drag_viscosity_max": a.drag_viscosity_max,
         "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": done[0]["particles"] if done else None,

@@ -501,36 +501,14 @@ def make_copy(scene, run_dir, tier, texts, records, content):
 
 
 def liquid_restart_time(run_dir, ranks):
-    """Latest written time of an interrupted liquid run that can continue, else None."""
+    """Latest complete field write of an interrupted liquid run, else None: the one
+    resumeLiquidCase continues from (asked of the same shell function, _latestLiquidWrite)."""
     if not os.path.isfile(os.path.join(run_dir, "log.mixflowFoam")):
         return None
-    base = os.path.join(run_dir, "processor0") if ranks > 1 else run_dir
-    if ranks > 1 and len([d for d in os.listdir(run_dir) if d.startswith("processor")]) != ranks:
-        return None
-    if not os.path.isdir(base):
-        return None
-    times = [d for d in os.listdir(base) if _is_time_dir(d)
-             and os.path.isfile(os.path.join(base, d, "uniform", "functionObjects",
-                                             "functionObjectProperties"))]
-    return max(times, key=float) if times else None
-
-
-def truncate_series(path, t_last):
-    """Drops rows after T_LAST (a restart writes them again)."""
-    if not os.path.isfile(path):
-        return
-    with open(path) as f:
-        lines = f.readlines()
-    keep = []
-    for ln in lines:
-        try:
-            if float(ln.split(",")[0]) > t_last * (1 + 1e-9) + 1e-12:
-                continue
-        except ValueError:
-            pass
-        keep.append(ln)
-    with open(path, "w") as f:
-        f.writelines(keep)
+    out = subprocess.run(["bash", "-c", '. "$1" && _latestLiquidWrite "$2"', "LiquidRunFunctions",
+                          os.path.join(ROOT, "scripts", "LiquidRunFunctions"), str(ranks)],
+                         cwd=run_dir, capture_output=True, text=True).stdout.strip()
+    return out or None
 
 
 def has_fingerprint(state_path):
@@ -633,15 +611,6 @@ def resume_command(content, ranks):
 def execute(p, ranks, label, progress_every, samples=None, poll=1.0):
     """Runs the planned scene; returns (ok, wall seconds). SAMPLES collects (wall, sim time)."""
     run_dir, content = p["run_dir"], p["content"]
-    if p["status"] == "resume" and content == "liquid":
-        t = float(p["restart_time"])
-        ctl = os.path.join(run_dir, FILES["controlDict"])
-        with open(ctl) as f:
-            text, _ = edit_dict(f.read(), {"startFrom": "latestTime"})
-        with open(ctl, "w") as f:
-            f.write(text)
-        for name in ("timeSeries.csv", "profiles.csv"):
-            truncate_series(os.path.join(run_dir, "postProcessing", "liquid", name), t)
     cmd = resume_command(content, ranks) if p["status"] == "resume" else \
         ["./Allrun", str(ranks)] + ([p["settled"]] if p.get("settled") else [])
     t_end = end_time(run_dir)

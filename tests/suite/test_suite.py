@@ -269,8 +269,6 @@ csvp = os.path.join(work, "ts.csv")
 with open(csvp, "w") as f:
     f.write("time_s,x\n0,1\n0.1,2\n0.2,3\n0.30000001,4\n")
 check(suite.last_time(csvp) == 0.30000001, "last time of a CSV")
-suite.truncate_series(csvp, 0.2)
-check(open(csvp).read() == "time_s,x\n0,1\n0.1,2\n0.2,3\n", "rows after the restart time cut")
 liq = os.path.join(work, "liq")
 for t in ("0", "0.1", "0.2"):
     os.makedirs(os.path.join(liq, t, "uniform", "functionObjects"))
