@@ -36,7 +36,10 @@ def main():
     ap.add_argument("cases", nargs="+")
     ap.add_argument("--json")
     a = ap.parse_args()
-    res = {os.path.basename(os.path.normpath(c)): speeds(c) for c in a.cases}
+    names = [os.path.basename(os.path.normpath(c)) for c in a.cases]
+    # Cases are named by their directory, or by their path where two share a name (variants).
+    res = {(n if names.count(n) == 1 else os.path.normpath(c)): speeds(c)
+           for n, c in zip(names, a.cases)}
     for name, rows in res.items():
         print(name + ": " + " | ".join(
             f"{r['time_s']:g} s: {r['max_speed_m_s']:.2f} (liquid {r['max_liquid_speed_m_s']:.3f})"
