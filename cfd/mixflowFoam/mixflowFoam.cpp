@@ -24,9 +24,12 @@
 // Limitations (checked at start-up): Euler time scheme only, static mesh, no MRF/LTS, no
 // isotropic/shear compression (icAlpha, scAlpha); alpha sub-cycling only while eps_f is steady.
 
+#include <iostream>
+
 #include "CMULES.H"
 #include "EulerDdtScheme.H"
 #include "Function1.H"
+#include "Progress.h"
 #include "fvCFD.H"
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
@@ -71,6 +74,11 @@ int main(int argc, char *argv[]) {
       << "\nStarting time loop\n"
       << endl;
 
+  // A progress line every 5 s of wall time (rank 0): simulated time, wall time, estimate to
+  // finish; the Allrun scripts show these lines on screen.
+  mixflow::Progress progress("liquid " + runTime.globalCaseName().name(), runTime.value(),
+                             runTime.endTime().value(), std::cout);
+
   while (runTime.run()) {
     // clang-format off
 #include "readTimeControls.H"
@@ -91,7 +99,9 @@ int main(int argc, char *argv[]) {
     runTime.write();
 
     runTime.printExecutionTime(Info);
+    if (Pstream::master()) progress.update(runTime.value());
   }
+  if (Pstream::master()) progress.update(runTime.value(), true);
 
   Info << "End\n" << endl;
 
