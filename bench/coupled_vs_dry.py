@@ -142,9 +142,11 @@ def main():
     ap.add_argument("--n-correctors", type=int,
                     help="cfdDict nCorrectors, the PISO pressure correctors per fluid step "
                          "(default: the case's, auto: 3 or 10 by the viscous number)")
-    ap.add_argument("--drag-viscosity-max", type=float,
+    ap.add_argument("--drag-viscosity-max", default="",
                     help="couplingProperties DiFeliceDragCoeffs viscosityMax in Pa s, the drag's "
-                         "viscosity bound (default: the case's, none); 1 lets HB&P's column flow")
+                         "viscosity bound; a comma list runs each (with every --exchange-every) "
+                         "against the same dry twin, 'none' = the case's (no bound), e.g. none,1 "
+                         "(1 lets HB&P's column flow)")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
     a = ap.parse_args()
@@ -172,8 +174,6 @@ def main():
         set_entry(cp, "dragFluidResponse", a.drag_fluid_response)
     if a.void_smoothing is not None:
         edit(cp, {"dividedCoeffs": {"smoothing": repr(a.void_smoothing)}})
-    if a.drag_viscosity_max:
-        edit(cp, {"DiFeliceDragCoeffs": {"viscosityMax": repr(a.drag_viscosity_max)}})
     if a.n_correctors:
         edit(os.path.join(cpl, "system", "cfdDict"), {"nCorrectors": str(a.n_correctors)})
     dem_dict = os.path.join(cpl, "system", "demDict")
@@ -213,17 +213,24 @@ def main():
     c_dry = float(m.group(1))
     c_dry_diff = None if c_settle is None else c_dry_all - c_settle
     runs = []
-    for n in everies:
-        case = os.path.join(work, f"{a.liquid}+P-quick-every{n}")
+    vmaxes = [None if v == "none" else float(v) for v in a.drag_viscosity_max.split(",")] \
+        if a.drag_viscosity_max else [None]
+    for vmax, n in ((v, n) for v in vmaxes for n in everies):
+        case = os.path.join(work, f"{a.liquid}+P-quick-every{n}" +
+                            ("" if vmax is None else f"-dragvmax{vmax:g}"))
         shutil.copytree(cpl, case)  # the settled sample included
         set_entry(os.path.join(case, "constant", "couplingProperties"), "exchangeEvery", str(n))
+        if vmax is not None:
+            edit(os.path.join(case, "constant", "couplingProperties"),
+                 {"DiFeliceDragCoeffs": {"viscosityMax": repr(vmax)}})
         timed([mf("mixflowPrepare"), "-case", case], case)
         timed(["blockMesh", "-case", case], case)
         try:
             w_cpl, c_proc, out = timed([mf("mixflowCoupled"), "-case", case], case)
         except SystemExit as e:  # a diverged run is a result of the trade too: record it, go on
             why = re.search(r"FOAM FATAL ERROR:\s*\n(.*)", str(e))
-            runs.append({"exchange_every": n, "failed": why.group(1) if why else str(e)[-500:]})
+            runs.append({"exchange_every": n, "drag_viscosity_max": vmax,
+                         "failed": why.group(1) if why else str(e)[-500:]})
             print(f"exchange every {n}: failed: {runs[-1]['failed']}", file=sys.stderr)
             continue
         # The time loop alone (start-up, mesh and restart reading left out, as the dry side's
@@ -242,7 +249,7 @@ def main():
         with open(os.path.join(case, "system", "in.liggghts")) as f:
             dem_step = float(re.search(r"^timestep\s+(\S+)", f.read(), re.M).group(1))
         runs.append({
-            "exchange_every": n, "dem_step_s": dem_step, "exchange_interval_s": n * dem_step,
+            "exchange_every": n, "drag_viscosity_max": vmax, "dem_step_s": dem_step, "exchange_interval_s": n * dem_step,
             "coupled_cpu_s": c_cpl, "coupled_process_cpu_s": c_proc,
             "ratio_coupled_over_dry": c_cpl / c_dry,
             # The coupling's own cost over the dry collapse, as if the coupled DEM cost what the
@@ -261,15 +268,17 @@ def main():
             "per_dem_step_s": dem_s / max(float(rows[-1]["demStep"]), 1.0) if rows else None,
             "observables": observables(case, a.end), "particles": summ["settled"]["particles"]})
     done = [r for r in runs if "observables" in r]
-    for r in done[1:]:  # how far each observable moves from the shortest interval's value
-        r["change_vs_every%d" % done[0]["exchange_every"]] = {
-            k: v - done[0]["observables"][k] for k, v in r["observables"].items()}
+    for vmax in vmaxes:  # how far each observable moves from the shortest interval's value
+        group = [r for r in done if r["drag_viscosity_max"] == vmax]
+        for r in group[1:]:
+            r["change_vs_every%d" % group[0]["exchange_every"]] = {
+                k: v - group[0]["observables"][k] for k, v in r["observables"].items()}
     res = {
         "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,
-        "n_correctors": a.n_correctors, "drag_viscosity_max": a.drag_viscosity_max,
+        "n_correctors": a.n_correctors, "drag_viscosity_max": vmaxes,
         "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": done[0]["particles"] if done else None,
