@@ -8,9 +8,10 @@ For each scene: cases/<scene> is copied to WORK/<scene> (once), the tier's overr
 (cases/tiers/<tier>) are set in the copy's files and recorded in WORK/<scene>/system/tier, then
 `./Allrun N` runs it (PATH gets the build's bin/: $MIXFLOW_BUILD or build/). A finished scene gets
 WORK/<scene>/.done and is skipped next time; an interrupted dry scene continues with
-`mixflowDem -resume`, an interrupted liquid one from its latest written time (startFrom latestTime),
-an interrupted mixture scene is rerun from its start. Progress lines: scene i/n, simulated time,
-wall time, estimated time to finish.
+`mixflowDem -resume`, an interrupted liquid one from its latest complete field write
+(resumeLiquidCase), an interrupted mixture one from its last field write (resumeMixtureCase), or,
+stopped before one, again from its start with its own settled sample. Progress lines: scene i/n,
+simulated time, wall time, estimated time to finish.
 
 --cost-only (the default of tier paper on a machine with fewer than 16 cores, unless --force)
 runs one scene per content (dry, liquid, mixture) for a short window, measures core-seconds per
@@ -578,9 +579,8 @@ def _plan_scene(scene, work, tier, ranks):
                     os.path.join(run_dir, "dem", "coupled.resume.state")):
                 p["status"] = "resume"
                 p["command"] = f"mixflowCoupled -resume from its last field write ({ranks} ranks)"
-            elif p["content"] == "liquid" and liquid_restart_time(run_dir, ranks):
-                p["status"] = "resume"
-                p["restart_time"] = liquid_restart_time(run_dir, ranks)
+            elif p["content"] == "liquid" and (t := liquid_restart_time(run_dir, ranks)):
+                p["status"], p["restart_time"] = "resume", t
                 p["command"] = f"mixflowFoam from t = {p['restart_time']} s ({ranks} ranks)"
             else:
                 p["status"], p["command"] = "restart", f"./Allrun {ranks}"
