@@ -18,7 +18,8 @@ directory and a row after the write in each series. Then B's endTime is set to 0
      relative. The restart reads fields written with 10 significant digits (writePrecision), and
      that round-off grows on a breaking free surface; when this test was written the fronts
      were equal and the two others differed by 9e-8 and 9e-7 (serial and 2 ranks alike).
-  5. resuming a case without a complete write is refused.
+  5. resuming a case without a complete write is refused;
+  6. run A's screen shows mixflowFoam's progress line (simulated time, wall, estimate to finish).
 """
 import csv
 import os
@@ -109,6 +110,9 @@ a, b = make("a", 0.4), make("b", 1.0)
 rc, out = run(LIQ, a)
 if rc != 0:
     sys.exit("run A failed:\n" + out[-3000:])
+check(re.search(r"^\[liquid a\] t = 0\.4000 s of 0\.4000 s \(100\.0 %\), wall \d\d:\d\d:\d\d, "
+                r"to finish", out, re.M) is not None,
+      "the run shows mixflowFoam's progress line (simulated time, wall, estimate to finish)")
 
 proc = shell(LIQ, b)
 deadline = time.time() + 300
