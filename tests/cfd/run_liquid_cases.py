@@ -10,13 +10,13 @@ mixflowFoam (serial, or decomposePar + mpirun -np 2 ... -parallel + reconstructP
                  2-D (dimensions 2), channel 6a x 1.5a, water (rho 1000, mu 1e-3 Pa s,
                  sigma 0.07 N/m), to t = 0.26 s (T = t sqrt(g/a) = 3.4), on three meshes a/10,
                  a/20, a/40. Front Z = x_front/a (bed row, alpha >= 0.5) and residual height
-                 eta = h(back wall)/a against Martin & Moyce (1952), shared/reference/
+                 eta = h(back wall)/a against Martin & Moyce (1952), tests/reference/
                  martin_moyce_1952_n2eq1_front_height.csv, interpolated to the data times.
                  Pass (on a/40):
                  - |Z - Z_exp| <= 0.15 Z_exp + 0.07 at every data point with T <= 3. The 0.07 is
                    the data's digitisation (+-0.05 in T times the front slope 1.4); the 15 % is
                    the known lead of simulations over this experiment (gate removal, bed
-                   roughness; the note beside the data: experiments run at dZ/dT ~ 1.4 where
+                   roughness; the note in the table's header: experiments run at dZ/dT ~ 1.4 where
                    the shallow-water limit is 2). Measured |Z - Z_exp|: 0.11 ... 0.56, worst
                    relative 14.9 % at T = 0.62. The lead is the VOF model's, not ours: Debian's
                    interFoam on the same a/40 case gives a byte-identical Z(T) and eta(tau)
@@ -422,7 +422,7 @@ def main():
     p.add_argument("--decomposepar", default="decomposePar")
     p.add_argument("--reconstructpar", default="reconstructPar")
     p.add_argument("--mpiexec", default="mpirun --allow-run-as-root --oversubscribe")
-    p.add_argument("--martin-moyce", help="shared/reference/martin_moyce_1952_n2eq1_front_height.csv")
+    p.add_argument("--martin-moyce", help="tests/reference/martin_moyce_1952_n2eq1_front_height.csv")
     p.add_argument("--workdir", required=True)
     a = p.parse_args()
     work = os.path.join(os.path.abspath(a.workdir), a.scenario)
