@@ -88,7 +88,7 @@ def main():
     p.add_argument("--interfoam", default="/usr/bin/interFoam")
     p.add_argument("--blockmesh", default="/usr/bin/blockMesh")
     p.add_argument("--reference", default=os.path.join(
-        ROOT, "..", "shared", "reference", "martin_moyce_1952_n2eq1_front_height.csv"))
+        ROOT, "tests", "reference", "martin_moyce_1952_n2eq1_front_height.csv"))
     p.add_argument("--out", default=os.path.join(ROOT, "results/pure_liquids/"
                                                         "martin_moyce_interfoam.csv"))
     a = p.parse_args()

@@ -256,7 +256,7 @@ def read_exchange_log(case):
 
 
 def read_reference(path, key_col, key):
-    """Row of a shared/reference CSV ('#' comments, header, "..." quoting) whose key_col == key."""
+    """Row of a tests/reference CSV ('#' comments, header, "..." quoting) whose key_col == key."""
     with open(path) as f:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     for r in rows:

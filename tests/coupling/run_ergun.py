@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Issue 4 test 2: pressure drop of a fixed packed bed vs Ergun, three velocities below minimum
-fluidisation (shared/reference/ergun_cfdem_ErgunTestMPI.csv: CFDEMcoupling's ErgunTestMPI bed,
+fluidisation (tests/reference/ergun_cfdem_ErgunTestMPI.csv: CFDEMcoupling's ErgunTestMPI bed,
 d 1 mm, eps 0.451335, rho_f 10 kg/m3, nu 1.5e-4 m2/s; U_mf = 0.0145 m/s).
 
 Case: a column of 3 x 12 x 3 cells; the bed is a simple-cubic lattice of 9 x 15 x 9 fixed spheres
@@ -101,14 +101,15 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--solver", required=True)
     ap.add_argument("--blockmesh", required=True)
-    ap.add_argument("--shared", required=True)
+    ap.add_argument("--reference", required=True, help="directory of the reference tables "
+                    "(tests/reference)")
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--drag", default="GidaspowDrag", choices=["GidaspowDrag", "DiFeliceDrag"])
     ap.add_argument("--velocities", default="0.002,0.006,0.01")
     ap.add_argument("--tol", type=float, default=0.05)
     a = ap.parse_args()
 
-    ref_path = os.path.join(a.shared, "reference", "ergun_cfdem_ErgunTestMPI.csv")
+    ref_path = os.path.join(a.reference, "ergun_cfdem_ErgunTestMPI.csv")
     ok = True
     for u_txt in a.velocities.split(","):
         U = float(u_txt)

@@ -2,7 +2,7 @@
 """Issue 4 test 1: a single sphere settling in a box of still liquid reaches the terminal velocity
 of the Di Felice single-particle drag law.
 
-Reference: shared/reference/terminal_velocity_single_sphere.csv, row --row (default 'glass 0.5 mm
+Reference: tests/reference/terminal_velocity_single_sphere.csv, row --row (default 'glass 0.5 mm
 in water': d 0.5 mm, rho_p 2500, water rho 1000 kg/m3, mu 1e-3 Pa s, u_DallaValle = 0.068219 m/s,
 Re 34; Cd = (0.63 + 4.8/sqrt(Re))^2, unbounded fluid).
 
@@ -31,7 +31,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--solver", required=True)
     ap.add_argument("--blockmesh", required=True)
-    ap.add_argument("--shared", required=True)
+    ap.add_argument("--reference", required=True, help="directory of the reference tables "
+                    "(tests/reference)")
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--row", default="glass 0.5 mm in water")
     ap.add_argument("--cell-dp", type=float, default=5.0)
@@ -54,8 +55,8 @@ def main():
     cc.add_fluid_response_arg(ap)
     a = ap.parse_args()
 
-    ref = cc.read_reference(os.path.join(a.shared, "reference",
-                                         "terminal_velocity_single_sphere.csv"), "case", a.row)
+    ref = cc.read_reference(os.path.join(a.reference, "terminal_velocity_single_sphere.csv"),
+                           "case", a.row)
     d, rho_p, rho_f, mu = (float(ref[k]) for k in ("d_m", "rho_p", "rho_f", "mu_Pa_s"))
     u_ref = float(ref["u_DallaValle"])
     print(f"reference '{a.row}': d {d} m, rho_p {rho_p}, rho_f {rho_f}, mu {mu} -> "

@@ -1,6 +1,6 @@
-// Unit tests of the coupling's OpenFOAM-free parts: force laws against the shared reference
-// tables, sphere points, void-fraction models and the per-cell source assembly on a synthetic
-// uniform grid (exact volume and action-reaction balances), and the consistency refusals.
+// Unit tests of the coupling's OpenFOAM-free parts: force laws against the tables in
+// tests/reference, sphere points, void-fraction models and the per-cell source assembly on a
+// synthetic uniform grid (exact volume and action-reaction balances), and the consistency refusals.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,9 +25,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
-// Rows of a shared/reference CSV ('#' comments, header, "..." quoting) as column -> text.
+// Rows of a tests/reference CSV ('#' comments, header, "..." quoting) as column -> text.
 std::vector<std::map<std::string, std::string>> readCsv(const std::string& name) {
-  std::ifstream in(std::string(MIXFLOW_SHARED_DIR) + "/reference/" + name);
+  std::ifstream in(std::string(MIXFLOW_REFERENCE_DIR) + "/" + name);
   EXPECT_TRUE(in.good()) << "cannot open " << name;
   auto split = [](const std::string& line) {
     std::vector<std::string> out(1);

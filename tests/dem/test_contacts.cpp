@@ -2,7 +2,8 @@
 // pair and wall line comes from the generators in dem/LiggghtsCommands.h that the simulator uses,
 // and the instance is driven through LiggghtsSession (LIGGGHTS as a library).
 //
-//   test_contacts <case> --shared <shared dir> --workdir <dir>
+//   test_contacts <case> --reference <reference dir> --workdir <dir>
+// (the reference dir holds the CSV tables, tests/reference)
 //
 // Cases (each registered as its own CTest test, see CMakeLists.txt):
 //   restitution_{wall,pp}_limitforce_{on,off}
@@ -428,8 +429,8 @@ struct Stats {
 
 enum class Step { Resolved, SimulatorDefault };
 
-int restitution(bool wall, bool limitForce, Step step, const fs::path& shared, const fs::path& work,
-                MPI_Comm comm) {
+int restitution(bool wall, bool limitForce, Step step, const fs::path& reference,
+                const fs::path& work, MPI_Comm comm) {
   int nRanks = 1;
   MPI_Comm_size(comm, &nRanks);
   Checks check;
@@ -437,7 +438,7 @@ int restitution(bool wall, bool limitForce, Step step, const fs::path& shared, c
   const double R = p.radius(), m = p.mass();
 
   // Reference: LIGGGHTS' damped Hertz law integrated exactly (RK4): e_actual for e_input.
-  const Csv csv(shared / "reference" / "liggghts_hertz_actual_restitution.csv");
+  const Csv csv(reference / "liggghts_hertz_actual_restitution.csv");
   const auto& row = csv.row(
       "e_input",
       [&](const std::string& c) { return std::abs(std::stod(c) - p.restitution) < 1e-9; },
@@ -500,7 +501,7 @@ int restitution(bool wall, bool limitForce, Step step, const fs::path& shared, c
 // ---------------------------------------------------------------------------------------------
 // 2. Elastic Hertz impact (coefficientRestitution 1) against ContactTimes and the CSV row.
 
-int hertz(const std::string& caseName, bool wall, const fs::path& shared, const fs::path& work,
+int hertz(const std::string& caseName, bool wall, const fs::path& reference, const fs::path& work,
           MPI_Comm comm) {
   Checks check;
   ParticleMaterial p;   // paper material unless the CSV row says otherwise
@@ -509,7 +510,7 @@ int hertz(const std::string& caseName, bool wall, const fs::path& shared, const 
   std::vector<std::string> csvRow;
   std::unique_ptr<Csv> csv;
   if (!caseName.empty()) {
-    csv = std::make_unique<Csv>(shared / "reference" / "hertz_impact_analytic.csv");
+    csv = std::make_unique<Csv>(reference / "hertz_impact_analytic.csv");
     csvRow = csv->row(
         "case", [&](const std::string& c) { return c == caseName; }, "'" + caseName + "'");
     p.youngModulus = csv->number(csvRow, "E_Pa");
@@ -661,7 +662,7 @@ int rolling(const std::string& model, const fs::path& work, MPI_Comm comm) {
 
 int usage() {
   if (gRank == 0)
-    std::cerr << "usage: test_contacts <case> --shared <dir> --workdir <dir>\n"
+    std::cerr << "usage: test_contacts <case> --reference <dir> --workdir <dir>\n"
                  "cases: restitution_wall_limitforce_on restitution_wall_limitforce_off\n"
                  "       restitution_pp_limitforce_on restitution_pp_limitforce_off\n"
                  "       restitution_wall_default_dt restitution_pp_default_dt\n"
@@ -679,11 +680,11 @@ int main(int argc, char** argv) {
   int rc = 0;
   {
     std::string name;
-    fs::path shared, work;
+    fs::path reference, work;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
-      if (a == "--shared" && i + 1 < argc)
-        shared = argv[++i];
+      if (a == "--reference" && i + 1 < argc)
+        reference = argv[++i];
       else if (a == "--workdir" && i + 1 < argc)
         work = argv[++i];
       else if (name.empty() && a.rfind("--", 0) != 0)
@@ -691,36 +692,36 @@ int main(int argc, char** argv) {
       else
         name = "?";
     }
-    if (name.empty() || name == "?" || shared.empty() || work.empty()) {
+    if (name.empty() || name == "?" || reference.empty() || work.empty()) {
       rc = usage();
     } else {
       try {
         if (gRank == 0) {
           fs::create_directories(work);
-          std::cout << "case " << name << " (" << shared.string() << "); LIGGGHTS log in "
-                    << work.string() << std::endl;
+          std::cout << "case " << name << " (reference tables in " << reference.string()
+                    << "); LIGGGHTS log in " << work.string() << std::endl;
         }
         MPI_Barrier(comm);
         const double t0 = MPI_Wtime();
         const auto R = Step::Resolved, D = Step::SimulatorDefault;
         if (name == "restitution_wall_limitforce_on")
-          rc = restitution(true, true, R, shared, work, comm);
+          rc = restitution(true, true, R, reference, work, comm);
         else if (name == "restitution_wall_limitforce_off")
-          rc = restitution(true, false, R, shared, work, comm);
+          rc = restitution(true, false, R, reference, work, comm);
         else if (name == "restitution_pp_limitforce_on")
-          rc = restitution(false, true, R, shared, work, comm);
+          rc = restitution(false, true, R, reference, work, comm);
         else if (name == "restitution_pp_limitforce_off")
-          rc = restitution(false, false, R, shared, work, comm);
+          rc = restitution(false, false, R, reference, work, comm);
         else if (name == "restitution_wall_default_dt")
-          rc = restitution(true, DemSpec{}.limitForce, D, shared, work, comm);
+          rc = restitution(true, DemSpec{}.limitForce, D, reference, work, comm);
         else if (name == "restitution_pp_default_dt")
-          rc = restitution(false, DemSpec{}.limitForce, D, shared, work, comm);
+          rc = restitution(false, DemSpec{}.limitForce, D, reference, work, comm);
         else if (name == "hertz_pp_chungooi_glass")
-          rc = hertz("ChungOoi T1 sphere-sphere glass", false, shared, work, comm);
+          rc = hertz("ChungOoi T1 sphere-sphere glass", false, reference, work, comm);
         else if (name == "hertz_wall_chungooi_al")
-          rc = hertz("ChungOoi T2 sphere-rigid wall Al alloy", true, shared, work, comm);
+          rc = hertz("ChungOoi T2 sphere-rigid wall Al alloy", true, reference, work, comm);
         else if (name == "hertz_wall_paper")
-          rc = hertz("", true, shared, work, comm);
+          rc = hertz("", true, reference, work, comm);
         else if (name == "rolling_cdt")
           rc = rolling("cdt", work, comm);
         else if (name == "rolling_epsd2")

@@ -15,7 +15,7 @@ TEST(ContactTimes, RayleighTimeOfPaperParticle) {
 }
 
 TEST(ContactTimes, HertzImpactMatchesReferenceTable) {
-  // shared/reference/hertz_impact_analytic.csv, Chung & Ooi test 1 glass: E*=2.5e10, R*=0.005,
+  // tests/reference/hertz_impact_analytic.csv, Chung & Ooi test 1 glass: E*=2.5e10, R*=0.005,
   // m*=0.0058643, v=20: delta_max 274.1127 um, F_max 10.6969 kN, t_c 40.3357 us.
   const double e = effectiveModulus(48e9, 0.2, 48e9, 0.2);
   EXPECT_NEAR(e, 2.5e10, 1e6);
