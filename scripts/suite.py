@@ -485,7 +485,7 @@ def make_copy(scene, run_dir, tier, texts, records, content):
     src = os.path.join(CASES, scene)
 
     def ignore(_d, names):
-        return [n for n in names if n in OUTPUT_NAMES or n.startswith("log.")
+        return [n for n in names if n in OUTPUT_NAMES or n.startswith(("log.", "previous-run."))
                 or n.startswith("processor") or _is_time_dir(n)]
     shutil.copytree(src, run_dir, ignore=ignore)
     allrun = os.path.join(run_dir, "Allrun")
