@@ -153,7 +153,7 @@ std::string controlDict(const LiquidCase& c) {
     << "runTimeModifiable no;\nadjustTimeStep  " << (coupled ? "no" : "yes") << ";\n"
     << "maxCo           " << num(m.maxCo) << ";\n"
     << "maxAlphaCo      " << num(m.maxAlphaCo) << ";\n"
-    << "maxDeltaT       " << num(m.maxDeltaT) << ";\n\n"
+    << "maxDeltaT       " << num(c.maxDeltaTUsed()) << ";\n\n"
     << "// Liquid observables every time step -> postProcessing/liquid/ (cfd/README.md).\n"
     << "functions\n{\n    liquid\n    {\n"
     << "        type            liquidObservables;\n"
@@ -203,7 +203,7 @@ std::string fvSolution(const LiquidCase& c) {
     << "        tolerance       " << num(m.alphaTolerance) << ";\n        relTol          0;\n"
     << "    }\n"
     << "    \"pcorr.*\" { solver PCG; preconditioner DIC; tolerance 1e-5; relTol 0; }\n"
-    << "    p_rgh { solver GAMG; smoother DIC; tolerance " << num(m.pressureTolerance)
+    << "    p_rgh { solver GAMG; smoother DIC; tolerance " << num(c.pressureToleranceUsed())
     << "; relTol 0.01; }\n"
     << "    p_rghFinal { $p_rgh; relTol 0; }\n"
     << "    \"U.*\" { solver PBiCGStab; preconditioner DILU; tolerance 1e-7; relTol 0; }\n}\n\n"
@@ -335,7 +335,18 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
      << (autoCorrectors ? " (auto)" : " (cfdDict)")
      << ": viscous number mu dt/(rho dx^2) = " << formatNumber(D, 3);
   if (autoCorrectors) os << (D <= limit ? " <= " : " > ") << formatNumber(limit, 3);
-  os << "\n";
+  os << "; p_rgh tolerance " << formatNumber(c.pressureToleranceUsed(), 3)
+     << (c.numerics.pressureTolerance > 0 ? " (cfdDict)" : " (auto)") << "\n";
+  if (c.maxDeltaTUsed() < c.numerics.maxDeltaT)
+    os << "[mixflowPrepare] maxDeltaT " << num(c.maxDeltaTUsed()) << " s instead of cfdDict's "
+       << num(c.numerics.maxDeltaT)
+       << " s: keeps the viscous number <= " << formatNumber(LiquidCase::kViscousNumberMax, 3)
+       << ", the largest measured to hold a yield-stress liquid at rest\n";
+  if (c.coupledDeltaT > 0 && D > LiquidCase::kViscousNumberMax)
+    os << "[mixflowPrepare] warning: viscous number " << formatNumber(D, 3) << " > "
+       << formatNumber(LiquidCase::kViscousNumberMax, 3)
+       << " at the coupled step: a liquid at its viscosity cap may not stay at rest; lower "
+          "exchangeEvery or the DEM step, or coarsen the mesh\n";
   os << "[mixflowPrepare] endTime " << num(c.endTime) << " s, writeInterval "
      << num(c.writeInterval) << " s, maxCo " << num(c.numerics.maxCo) << ", ranks " << ranks
      << "\n";

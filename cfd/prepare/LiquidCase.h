@@ -58,7 +58,7 @@ struct CfdNumerics {
   // H(U), which holds a capped yield-stress liquid (mu up to viscosityCap) nearly still.
   bool momentumPredictor = true;
   std::string momentumScheme = "linearUpwind";  // linearUpwind | upwind | limitedLinearV
-  double pressureTolerance = 1e-7;              // p_rgh absolute tolerance (final: relTol 0)
+  double pressureTolerance = 0;   // p_rgh absolute tolerance (final: relTol 0); 0 = auto (below)
   double alphaTolerance = 1e-10;  // implicit alpha predictor: its residual is the only volume error
   std::string writeFormat = "ascii";  // ascii | binary
 };
@@ -98,13 +98,30 @@ struct LiquidCase {
   // The viscous number D = mu_max dt / (rho dx_min^2): the viscous term's neighbour coefficients
   // over the unsteady diagonal, i.e. how much of the velocity correction PISO's diagonal-only
   // pressure step leaves to the next corrector. mu_max is the Newtonian viscosity or the
-  // regularisation cap; dt the coupled step, else maxDeltaT (the adaptive step's bound, reached
+  // regularisation cap; dt the coupled step, else maxDeltaTUsed (the adaptive step's bound, reached
   // where a capped liquid is near rest).
   double viscousNumber() const;
+  double maxViscosity() const;  // Pa s: the Newtonian viscosity or the regularisation cap
+  double minCellSize() const;   // m: the smallest cell edge (z only in 3-D)
   // nCorrectors as written to fvSolution: the user's, or for `auto` 3 up to
   // kViscousNumberFewCorrectors and 10 above (bench/piso_correctors.py, docs/parameters.md).
   int nCorrectorsUsed() const;
   static constexpr double kViscousNumberFewCorrectors = 20;
+  // p_rgh tolerance as written to fvSolution: the user's, or for `auto`
+  // kPressureTolerance x min(1, kViscousNumberFewCorrectors / D)^2, at least
+  // kPressureToleranceMin. The solver's residual is normalised over the whole domain, where the
+  // air's fluxes dominate; a capped yield-stress liquid's continuity is then left unconverged
+  // and an arrested slump restarts by itself (measured: tests/cfd yield-arrest-*).
+  double pressureToleranceUsed() const;
+  static constexpr double kPressureTolerance = 1e-7;
+  static constexpr double kPressureToleranceMin = 1e-12;
+  // The largest viscous number measured to hold an arrested slump with the tolerance at its
+  // floor (tau_y 100 Pa on 2.5 mm cells, D = 1.6e4); maxDeltaTUsed keeps a liquid run below it.
+  static constexpr double kViscousNumberMax = 1.6e4;
+  // maxDeltaT as written to controlDict: the user's, lowered for a liquid run so that the
+  // viscous number stays <= kViscousNumberMax (a coupled run's step is exchangeEvery x the DEM
+  // step; describe() warns there instead).
+  double maxDeltaTUsed() const;
   double minDepthUsed() const {
     return observables.minDepth > 0 ? observables.minDepth : 0.5 * dy();
   }
