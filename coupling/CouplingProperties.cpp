@@ -32,6 +32,11 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
       d.fail("forceModels", "model '" + m + "' is listed twice");
     p.forceModels.push_back(m);
   }
+  if (p.forceModels.empty()) {
+    std::string list;
+    for (const auto& m : ForceModel::available()) list += (list.empty() ? "" : " ") + m;
+    d.fail("forceModels", "lists no model; give one or more of: " + list);
+  }
   p.voidFractionModel = d.wordOr("voidFractionModel", "divided", VoidFractionModel::available());
   p.interpolation = d.wordOr("interpolation", "cell", {"cell", "cellPoint"});
   p.sourceDistribution = d.wordOr("sourceDistribution", "volume", {"volume", "centre"});

@@ -12,11 +12,9 @@
 // (`divideByVoidfraction` in DiFeliceDragCoeffs overrides it; `no` reproduces Eq. 10 as printed).
 // For a single particle (eps_f -> 1) the two agree.
 //
-// Viscosity: mu_f is the fluid's apparent dynamic viscosity at the particle, rho nu with nu the
-// VOF mixture's kinematic viscosity; for a generalised-Newtonian liquid (Herschel-Bulkley) OpenFOAM
-// evaluates nu at the shear rate of the resolved (cell-averaged, interstitial) flow,
-// gamma_dot = sqrt(2) |symm(grad U)|, capped by nu0 -- not at a particle-scale shear rate
-// |U - v| / d, which an unresolved mesh does not see (documented in coupling/README.md).
+// Viscosity: mu_f comes from the `dragViscosity` closure (DragViscosity.h): by default the
+// fluid's apparent viscosity at the particle at the resolved shear rate (capped at rest); `slip`
+// evaluates the liquid's law at a particle-scale shear rate instead.
 //
 // Re_p -> 0: Cd |U - v| is evaluated as (0.63 sqrt|U - v| + 4.8 sqrt(mu / (rho d eps_f)))^2,
 // finite at zero slip, so beta stays finite and the implicit drag is well defined at rest.
@@ -58,23 +56,24 @@ namespace {
 class DiFeliceDrag final : public ForceModel {
  public:
   DiFeliceDrag(const Dictionary& coeffs, const ForceContext& c) {
-    coeffs.allowOnly({"divideByVoidfraction", "viscosityMax"});
+    std::vector<std::string> allowed = DragViscosity::entries();
+    allowed.push_back("divideByVoidfraction");
+    coeffs.allowOnly(allowed);
     divide_ = coeffs.switchOr("divideByVoidfraction", c.formulation == "B");
-    // A drag-only viscosity bound (Pa s; default none): for a yield-stress liquid the same as
-    // evaluating its law at a shear rate of at least the one where it reaches this viscosity,
-    // i.e. a pore-scale shear rate the unresolved mesh does not see (docs/parameters.md).
-    if (coeffs.has("viscosityMax"))
-      viscosityMax_ = coeffs.scalar("viscosityMax", Range::positive());
+    viscosity_ = DragViscosity::New(coeffs, c.liquid);
   }
   const std::string& name() const override {
     static const std::string n = "DiFeliceDrag";
     return n;
   }
-  unsigned needs() const override { return kNeedsU | kNeedsRho | kNeedsMu | kNeedsVoidfraction; }
+  unsigned needs() const override {
+    return kNeedsU | kNeedsRho | kNeedsVoidfraction | viscosity_->needs();
+  }
   ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const override {
     ParticleForce out;
-    const double mu = viscosityMax_ > 0 ? std::min(f.mu, viscosityMax_) : f.mu;
-    out.beta = diFelice(2 * p.radius, f.rho, mu, f.voidfraction, mag(f.U - p.v), divide_).beta;
+    const double slip = mag(f.U - p.v);
+    const double mu = viscosity_->viscosity(p, f, slip);
+    out.beta = diFelice(2 * p.radius, f.rho, mu, f.voidfraction, slip, divide_).beta;
     return out;
   }
   std::string describe() const override {
@@ -83,14 +82,13 @@ class DiFeliceDrag final : public ForceModel {
          "(Ksl, Us); "
       << (divide_ ? "divided by eps_f (formulation B drag)"
                   : "not divided by eps_f (Eq. 10 as printed, formulation A drag)")
-      << "; mu_f = rho nu of the mixture at the resolved shear rate";
-    if (viscosityMax_ > 0) s << ", bounded by viscosityMax " << viscosityMax_ << " Pa s";
+      << "; " << viscosity_->describe();
     return s.str();
   }
 
  private:
   bool divide_ = true;
-  double viscosityMax_ = 0;  // 0: the apparent viscosity as it is
+  std::unique_ptr<DragViscosity> viscosity_;
 };
 
 }  // namespace

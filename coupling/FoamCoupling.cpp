@@ -8,6 +8,7 @@
 #include "interpolation.H"
 #include "incompressibleTwoPhaseMixture.H"
 #include "incompressibleTurbulenceModel.H"
+#include "viscosityModel.H"
 // clang-format on
 
 #include <mpi.h>
@@ -79,6 +80,30 @@ enum Total {
 
 }  // namespace
 
+namespace {
+// The liquid's law from transportProperties (phase 1: Newtonian or HerschelBulkley, kinematic
+// values) and the air's (phase 2), in SI dynamic units, for the drag viscosity closures.
+LiquidLaw liquidLaw(const Foam::incompressibleTwoPhaseMixture& mixture) {
+  LiquidLaw law;
+  law.density = mixture.rho1().value();
+  law.airDensity = mixture.rho2().value();
+  const Foam::dictionary& air = mixture.nuModel2().viscosityProperties();
+  if (air.found("nu")) law.airViscosity = law.airDensity * air.get<Foam::scalar>("nu");
+  const Foam::dictionary& liq = mixture.nuModel1().viscosityProperties();
+  const Foam::word model(liq.get<Foam::word>("transportModel"));
+  if (model == "HerschelBulkley") {
+    const Foam::dictionary& c = liq.optionalSubDict("HerschelBulkleyCoeffs");
+    law.yieldStress = law.density * c.get<Foam::scalar>("tau0");
+    law.consistency = law.density * c.get<Foam::scalar>("k");
+    law.flowIndex = c.get<Foam::scalar>("n");
+    law.viscosityCap = law.density * c.get<Foam::scalar>("nu0");
+  } else if (liq.found("nu")) {
+    law.consistency = law.density * liq.get<Foam::scalar>("nu");
+  }
+  return law;
+}
+}  // namespace
+
 FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidfraction,
                            Foam::volScalarField& Ksl, Foam::volVectorField& Us,
                            Foam::volVectorField& fSource, Foam::volScalarField& solidResponse,
@@ -110,6 +135,7 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   context.g = toVec(g.value());
   context.formulation = "B";  // mixflowFoam's only formulation (it refuses any other)
   context.viscousStress = viscousStress;
+  context.liquid = liquidLaw(mixture);
   try {
     props_ = std::make_unique<CouplingProperties>(CouplingProperties::read(propsFile));
     for (const auto& name : props_->forceModels)
@@ -542,6 +568,14 @@ void FoamCoupling::exchange() {
     tmu = Foam::volScalarField::New("muApparent", rho_ * mixture_.nu());
     muInt = Foam::interpolation<Foam::scalar>::New(scheme, tmu());
   }
+  Foam::tmp<Foam::volScalarField> trate;
+  Foam::autoPtr<Foam::interpolation<Foam::scalar>> rateInt;
+  if (needs_ & kNeedsShearRate) {
+    // The resolved shear rate as the viscosity models evaluate it: sqrt(2) |symm(grad U)|.
+    trate = Foam::volScalarField::New("shearRate",
+                                      Foam::sqrt(2.0) * Foam::mag(Foam::symm(Foam::fvc::grad(U_))));
+    rateInt = Foam::interpolation<Foam::scalar>::New(scheme, trate());
+  }
   Foam::tmp<Foam::volVectorField> tdivTau;
   Foam::autoPtr<Foam::interpolation<Foam::vector>> divTauInt;
   if (needs_ & kNeedsDivTau) {
@@ -571,6 +605,7 @@ void FoamCoupling::exchange() {
     f.rho = rhoInt->interpolate(x, c);
     f.voidfraction = vf[c];
     if (muInt.valid()) f.mu = muInt->interpolate(x, c);
+    if (rateInt.valid()) f.shearRate = rateInt->interpolate(x, c);
     if (divTauInt.valid()) f.divTau = toVec(divTauInt->interpolate(x, c));
     if (gradPInt.valid()) f.gradP = toVec(gradPInt->interpolate(x, c));
     w.Ui = f.U;

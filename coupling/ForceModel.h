@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "Dictionary.h"
+#include "DragViscosity.h"
 #include "Vec3.h"
 
 namespace mixflow::coupling {
@@ -34,6 +35,7 @@ struct FluidAtParticle {
   Vec3 U;                   // interstitial fluid velocity [m/s]
   double rho = 0;           // fluid density: the VOF liquid/air mixture's [kg/m3]
   double mu = 0;            // apparent dynamic viscosity rho * nu of the mixture [Pa s]
+  double shearRate = 0;     // resolved shear rate sqrt(2) |symm(grad U)| [1/s]
   double voidfraction = 1;  // eps_f of the particle's cell (after the eps_f floor)
   Vec3 divTau;              // div(tau): viscous force per unit volume on the fluid [N/m3]
   Vec3 gradP;               // grad(p) [Pa/m] (no formulation-B model uses it)
@@ -47,6 +49,7 @@ enum FluidNeeds : unsigned {
   kNeedsVoidfraction = 1u << 3,
   kNeedsDivTau = 1u << 4,
   kNeedsGradP = 1u << 5,
+  kNeedsShearRate = 1u << 6,
 };
 
 // Settings every model may check its consistency against.
@@ -54,6 +57,7 @@ struct ForceContext {
   Vec3 g;                              // gravitational acceleration [m/s2]
   std::string formulation = "B";       // volume-averaged equations (physics.md section 3)
   std::string viscousStress = "full";  // fluid viscous term: full div(tau) or div(eps_f tau)
+  LiquidLaw liquid;                    // the pore liquid's law (drag viscosity closures)
 };
 
 struct ParticleForce {

@@ -44,32 +44,40 @@ namespace {
 class GidaspowDrag final : public ForceModel {
  public:
   GidaspowDrag(const Dictionary& coeffs, const ForceContext& c) {
-    coeffs.allowOnly({"divideByVoidfraction", "switchVoidfraction"});
+    std::vector<std::string> allowed = DragViscosity::entries();
+    allowed.insert(allowed.end(), {"divideByVoidfraction", "switchVoidfraction"});
+    coeffs.allowOnly(allowed);
     divide_ = coeffs.switchOr("divideByVoidfraction", c.formulation == "B");
     switch_ = coeffs.scalarOr("switchVoidfraction", 0.8, Range::closed(0.0, 1.0));
+    viscosity_ = DragViscosity::New(coeffs, c.liquid);
   }
   const std::string& name() const override {
     static const std::string n = "GidaspowDrag";
     return n;
   }
-  unsigned needs() const override { return kNeedsU | kNeedsRho | kNeedsMu | kNeedsVoidfraction; }
+  unsigned needs() const override {
+    return kNeedsU | kNeedsRho | kNeedsVoidfraction | viscosity_->needs();
+  }
   ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const override {
     ParticleForce out;
-    out.beta =
-        gidaspowBeta(2 * p.radius, f.rho, f.mu, f.voidfraction, mag(f.U - p.v), switch_, divide_);
+    const double slip = mag(f.U - p.v);
+    const double mu = viscosity_->viscosity(p, f, slip);
+    out.beta = gidaspowBeta(2 * p.radius, f.rho, mu, f.voidfraction, slip, switch_, divide_);
     return out;
   }
   std::string describe() const override {
     std::ostringstream s;
     s << "GidaspowDrag: Ergun below eps_f = " << switch_
       << ", Wen-Yu above; implicit in the fluid (Ksl, Us); "
-      << (divide_ ? "divided by eps_f (formulation B drag)" : "formulation A drag");
+      << (divide_ ? "divided by eps_f (formulation B drag)" : "formulation A drag") << "; "
+      << viscosity_->describe();
     return s.str();
   }
 
  private:
   bool divide_ = true;
   double switch_ = 0.8;
+  std::unique_ptr<DragViscosity> viscosity_;
 };
 
 }  // namespace

@@ -147,11 +147,20 @@ fix gravi all gravity {G!r} vector 0 -1 0
 """
 
 
+def transport_herschel_bulkley(rho_l, tau_y, k, n, cap):
+    """transportProperties of a Herschel-Bulkley (n = 1: Bingham) liquid, SI dynamic input."""
+    return (f"phases (water air);\nwater\n{{\n    transportModel HerschelBulkley;\n"
+            f"    HerschelBulkleyCoeffs {{ k {k / rho_l!r}; n {n!r}; tau0 {tau_y / rho_l!r}; "
+            f"nu0 {cap / rho_l!r}; }}\n    rho {rho_l!r};\n}}\n"
+            "air\n{\n    transportModel Newtonian; nu 1.48e-05; rho 1;\n}\nsigma 0.07;\n")
+
+
 def write_case(case, box, end, dt_cfd, dem_script, coupling, rho_l=1000.0, nu_l=1e-6,
                liquid_height=None, ptol="1e-10", write_steps=None, mixflow_properties=None,
-               open_top=False):
+               open_top=False, transport_text=None):
     """open_top: the lid y = Ly is open to the atmosphere (total pressure 0, air in/outflow),
-    else a no-slip wall like the other faces."""
+    else a no-slip wall like the other faces. transport_text: constant/transportProperties'
+    body (default: a Newtonian liquid of rho_l, nu_l)."""
     shutil.rmtree(case, ignore_errors=True)
     os.makedirs(case)
     fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict",
@@ -164,7 +173,7 @@ def write_case(case, box, end, dt_cfd, dem_script, coupling, rho_l=1000.0, nu_l=
     fc.write_foam_file(case, "system/fvSolution", "dictionary", "fvSolution",
                        SOLUTION.replace("{ptol}", ptol))
     fc.write_foam_file(case, "constant/transportProperties", "dictionary", "transportProperties",
-                       transport(rho_l, nu_l))
+                       transport_text or transport(rho_l, nu_l))
     fc.write_foam_file(case, "constant/turbulenceProperties", "dictionary",
                        "turbulenceProperties", "simulationType laminar;\n")
     fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",

@@ -23,7 +23,8 @@ Asserts (tolerances and why):
     behind the back wall and below the floor, because the grains there overlap the walls by their
     contact deflection: 6e-7 and 1.4e-7 of the volume).
 With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
-(couplingProperties entries), the same checks run on that variant; --grain-energy-max E also
+(couplingProperties entries) and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the
+same checks run on that variant; --grain-energy-max E also
 asserts the grains' energy budget: their kinetic energy never exceeds the potential energy they
 have released by more than E joules (a closed collapse only dissipates; E covers the elastic
 energy of the settled contacts that the restart releases).
@@ -91,6 +92,7 @@ def main():
     ap.add_argument("--liquid-case", help="take the liquid block of cases/NAME's sceneProperties")
     ap.add_argument("--couple", action="append", default=[], metavar="ENTRY=VALUE",
                     help="a couplingProperties entry of the run (repeatable)")
+    ap.add_argument("--drag-viscosity", help="DiFeliceDragCoeffs dragViscosity of the run")
     ap.add_argument("--grain-energy-max", type=float,
                     help="J: bound of max_t [KE_p(t) - (PE_p(0) - PE_p(t))]")
     ap.add_argument("--divergence", action="store_true",
@@ -124,6 +126,8 @@ def main():
         for kv in a.couple:
             key, value = kv.split("=", 1)
             f.write(f"{key} {value};   // test option\n")
+        if a.drag_viscosity:
+            f.write(f"DiFeliceDragCoeffs {{ dragViscosity {a.drag_viscosity}; }}   // test option\n")
     env = dict(os.environ, MIXFLOW_ROOT=a.root, PATH=a.bindir + os.pathsep + os.environ["PATH"])
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
     if a.divergence:

@@ -192,6 +192,81 @@ TEST(DiFeliceDrag, ViscosityMaxBoundsOnlyTheDragsViscosity) {
                InputError);
 }
 
+TEST(DragViscosity, LiquidLawAndSlipRate) {
+  LiquidLaw b;  // the paper's Bingham liquid
+  b.density = 1400;
+  b.yieldStress = 2.1;
+  b.consistency = 4;
+  b.viscosityCap = 1e4;
+  EXPECT_NEAR(b.viscosity(1.0), 6.1, 1e-12);  // (tau_y + mu_p rate) / rate
+  EXPECT_NEAR(b.viscosity(1e-6), 1e4, 1e-9);  // capped at rest
+  EXPECT_NEAR(b.liquidFraction(1400), 1.0, 1e-15);
+  EXPECT_NEAR(b.liquidFraction(700.5), 0.5, 1e-15);
+  EXPECT_NEAR(b.liquidFraction(0.5), 0.0, 1e-15);
+  // Dilute: the single sphere's |U - v| / d; packed (eps 0.4): 12 (1 - eps) / eps = 18 times it.
+  EXPECT_NEAR(slipShearRate(0.024, 0.024, 0.999, 1.0), 1.0, 1e-12);
+  EXPECT_NEAR(slipShearRate(0.024, 0.024, 0.4, 1.0), 18.0, 1e-12);
+  EXPECT_NEAR(slipShearRate(0.024, 0.024, 0.999, 1.5), 1.5, 1e-12);
+}
+
+TEST(DragViscosity, SlipClosureGivesTheBinghamPlasticDrag) {
+  // A lone grain at slip s in a Bingham liquid: mu = tau_y d / s + mu_p, so the drag tends to the
+  // plastic force Cd Re / 24 x 3 pi tau_y d^2 as s -> 0 (before the cap), and the resolved
+  // closure keeps the cell's (capped) viscosity.
+  ForceContext c;
+  c.liquid.density = 1400;
+  c.liquid.yieldStress = 2.1;
+  c.liquid.consistency = 4;
+  c.liquid.viscosityCap = 1e4;
+  const auto slip =
+      ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { dragViscosity slip; }"), c);
+  const auto resolved =
+      ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { dragViscosity resolved; }"), c);
+  // auto: slip for this liquid, resolved for a Newtonian one.
+  const auto autoBingham = ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { }"), c);
+  EXPECT_TRUE(autoBingham->needs() & kNeedsShearRate);
+  EXPECT_FALSE(
+      ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { }"), ForceContext())->needs() &
+      kNeedsShearRate);
+  EXPECT_TRUE(slip->needs() & kNeedsShearRate);
+  EXPECT_FALSE(resolved->needs() & kNeedsShearRate);
+  ParticleState p;
+  p.radius = 0.012;
+  FluidAtParticle f;
+  f.rho = 1400;
+  f.voidfraction = 1.0;
+  f.mu = 1e4;  // the cell at its cap
+  const double s = 0.05;
+  f.U = Vec3(0, s, 0);
+  const double mu = 2.1 * 0.024 / s + 4;
+  EXPECT_NEAR(slip->force(p, f).beta, diFelice(0.024, 1400, mu, 1.0, s, true).beta, 1e-12);
+  EXPECT_NEAR(resolved->force(p, f).beta, diFelice(0.024, 1400, 1e4, 1.0, s, true).beta, 1e-9);
+  // A resolved shear rate adds in quadrature: at rate r and zero slip mu = mu(r).
+  f.U = Vec3(0, 0, 0);
+  f.shearRate = 2.0;
+  EXPECT_NEAR(slip->force(p, f).beta, diFelice(0.024, 1400, 2.1 / 2.0 + 4, 1.0, 0, true).beta,
+              1e-12);
+  // Plastic limit: F / (3 pi tau_y d^2) -> Cd Re / 24 = 4.8^2 / 24 = 0.96 at small slip.
+  f.shearRate = 0;
+  const double small = 1e-4;
+  f.U = Vec3(0, small, 0);
+  const double F = slip->force(p, f).beta * small;
+  EXPECT_NEAR(F / (3 * 3.14159265358979 * 2.1 * 0.024 * 0.024), 0.96, 0.01);
+  // Entries of the other closure are refused.
+  EXPECT_THROW(
+      ForceModel::New("DiFeliceDrag",
+                      dict("DiFeliceDragCoeffs { dragViscosity slip; viscosityMax 1; }"), c),
+      InputError);
+  EXPECT_THROW(ForceModel::New("DiFeliceDrag",
+                               dict("DiFeliceDragCoeffs { dragViscosity resolved; "
+                                    "slipCoeffs { shearRateFactor 2; } }"),
+                               c),
+               InputError);
+  EXPECT_THROW(
+      ForceModel::New("DiFeliceDrag", dict("DiFeliceDragCoeffs { dragViscosity pore; }"), c),
+      InputError);
+}
+
 TEST(ForceModels, BuoyancyIsMinusDisplacedFluidWeight) {
   ForceContext c;
   c.g = Vec3(0, -kG, 0);
