@@ -21,29 +21,33 @@ const FieldDef kFields[kFieldCount] = {
      0},
     {fAlphaF, "alpha_f", "1", "fluid volume fraction 1 - alpha_s", 0},
     {fUs, "u_s", "m/s", "particle velocity along x (down-channel), particle-volume weighted",
-     kNoParticles},
+     kParticleMask},
     {fWs, "w_s", "m/s",
-     "particle velocity along y (vertical, the paper's w), particle-volume weighted", kNoParticles},
+     "particle velocity along y (vertical, the paper's w), particle-volume weighted",
+     kParticleMask},
     {fUf, "u_f", "m/s",
      "liquid velocity along x, weighted by the liquid volume alpha_l eps_f V of the cells whose "
-     "centre is in the bin",
-     kNoLiquid},
-    {fWf, "w_f", "m/s", "liquid velocity along y (vertical), liquid-volume weighted", kNoLiquid},
-    {fPf, "p_f", "Pa", "liquid pressure (fluid field p), liquid-volume weighted", kNoLiquid},
+     "centre is in the bin; masked where the liquid share of the bin's fluid volume is below "
+     "thresholds.minLiquidShare",
+     kLiquidMask},
+    {fWf, "w_f", "m/s", "liquid velocity along y (vertical), liquid-volume weighted", kLiquidMask},
+    {fPf, "p_f", "Pa", "liquid pressure (fluid field p), liquid-volume weighted", kLiquidMask},
     {fPs, "p_s", "Pa",
      "granular pressure -tr(sigma)/3, sigma = (1/V_bin)[sum_i w_i C_i - sum_i w_i m_i v'_i v'_i], "
      "C_i contact stress x volume from LIGGGHTS compute stress/atom (c_pstress, kinetic term "
      "removed), w_i = V_i,bin / V_i, v' about the snapshot's bin-mean velocity; averaged over the "
-     "window's snapshots; positive in compression",
-     0},
-    {fPsContact, "p_s_contact", "Pa", "contact part of p_s", 0},
-    {fPsKinetic, "p_s_kinetic", "Pa", "streaming (velocity fluctuation) part of p_s", 0},
-    {fSigmaXX, "sigma_s_xx", "Pa", "particle-phase stress xx (tension positive)", 0},
+     "window's snapshots; positive in compression; masked where the bin holds fewer than "
+     "thresholds.minParticleSamples particle samples",
+     kParticleMask},
+    {fPsContact, "p_s_contact", "Pa", "contact part of p_s", kParticleMask},
+    {fPsKinetic, "p_s_kinetic", "Pa", "streaming (velocity fluctuation) part of p_s",
+     kParticleMask},
+    {fSigmaXX, "sigma_s_xx", "Pa", "particle-phase stress xx (tension positive)", kParticleMask},
     {fSigmaYY, "sigma_s_yy", "Pa", "particle-phase stress yy (vertical normal, tension positive)",
-     0},
+     kParticleMask},
     {fSigmaZZ, "sigma_s_zz", "Pa", "particle-phase stress zz (across the width, tension positive)",
-     0},
-    {fSigmaXY, "sigma_s_xy", "Pa", "particle-phase shear stress xy", 0},
+     kParticleMask},
+    {fSigmaXY, "sigma_s_xy", "Pa", "particle-phase shear stress xy", kParticleMask},
     {fSaturation, "saturation", "1",
      "liquid share of the fluid volume in the bin: sum alpha_l eps_f V / sum eps_f V (cells by "
      "centre)",
@@ -119,6 +123,8 @@ const std::vector<MaskBitInfo> kBits = {
     {kSmallDenominatorW, "small_denominator_w",
      "|alpha_s + lambda_w alpha_f| below thresholds.minDenominator"},
     {kNoGradient, "no_gradient", "mass balance: no mixture neighbour along x or along y"},
+    {kLittleLiquid, "little_liquid",
+     "liquid share of the fluid volume below thresholds.minLiquidShare (u_f, w_f, p_f masked)"},
 };
 
 }  // namespace
@@ -186,6 +192,7 @@ MixtureValues mixtureValues(const BinSums& b, double volume, int snapshots, int 
     const double sat = b.liquidVolume / b.fluidVolume;  // fluidVolume >= liquidVolume > 0
     v[fSaturation] = sat;
     if (sat < th.minSaturation) r |= kUnsaturated;
+    if (sat < th.minLiquidShare) r |= kLittleLiquid;
   } else {
     r |= kNoLiquid;
   }

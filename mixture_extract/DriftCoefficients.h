@@ -27,9 +27,13 @@ enum MaskBit : std::uint16_t {
   kSmallDenominatorU = 256,  // |alpha_s + lambda_u alpha_f| < thresholds.minDenominator
   kSmallDenominatorW = 512,  // |alpha_s + lambda_w alpha_f| < thresholds.minDenominator
   kNoGradient = 1024,        // mass balance: no neighbour in the mixture along x or y
+  kLittleLiquid = 2048,      // liquid share of the fluid volume < thresholds.minLiquidShare
 };
-constexpr std::uint16_t kOutsideMixture =
-    kNoParticles | kFewParticleSamples | kNoLiquid | kLowSolidFraction | kUnsaturated;
+constexpr std::uint16_t kOutsideMixture = kNoParticles | kFewParticleSamples | kNoLiquid |
+                                          kLittleLiquid | kLowSolidFraction | kUnsaturated;
+// What masks the particle quantities (u_s, w_s, p_s, sigma) and the liquid ones (u_f, w_f, p_f).
+constexpr std::uint16_t kParticleMask = kNoParticles | kFewParticleSamples;
+constexpr std::uint16_t kLiquidMask = kNoLiquid | kLittleLiquid;
 
 struct MaskBitInfo {
   std::uint16_t bit;

@@ -54,7 +54,7 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   s.dictText = readTextFile(dictFile);
   const Dictionary d = Dictionary::parse(s.dictText, dictFile);
   d.allowOnly({"grid", "windows", "thresholds", "pressureConvention", "liquidDensity", "viscosity",
-               "fluid", "particles", "timeTolerance", "regions", "output"});
+               "fluid", "particles", "timeTolerance", "pairTolerance", "regions", "output"});
 
   const Dictionary& g = d.subDict("grid");
   g.allowOnly({"x", "y"});
@@ -87,6 +87,10 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
     const double start = w.scalarOr("start", 0.0, Range::nonNegative());
     const double end = w.scalarOr("end", scene.endTime, Range::positive());
     const double width = w.scalar("width", Range::positive());
+    s.windowStart = start;
+    s.windowWidth = width;
+    s.windowStartWhere = w.where("start");
+    s.windowWidthWhere = w.where("width");
     if (!(end > start)) w.fail("end", "value " + num(end) + " must exceed start " + num(start));
     const long count = std::lround(std::ceil((end - start) / width - 1e-9));
     if (count > 100000) w.fail("width", "gives " + std::to_string(count) + " windows (max 100000)");
@@ -98,7 +102,7 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
 
   const Dictionary t = d.subDictOrEmpty("thresholds");
   t.allowOnly({"minVelocity", "minPressure", "minSolidFraction", "minSaturation", "minDenominator",
-               "minParticleSamples"});
+               "minParticleSamples", "minLiquidShare"});
   Thresholds& th = s.thresholds;
   th.minVelocity = t.scalarOr("minVelocity", th.minVelocity, Range::positive());
   th.minPressure = t.scalarOr("minPressure", th.minPressure, Range::positive());
@@ -106,10 +110,27 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   th.minSaturation = t.scalarOr("minSaturation", th.minSaturation, Range::closed(0, 1));
   th.minDenominator = t.scalarOr("minDenominator", th.minDenominator, Range::positive());
   th.minParticleSamples = t.integerOr("minParticleSamples", th.minParticleSamples, 1, 1000000000);
+  th.minLiquidShare = t.scalarOr("minLiquidShare", th.minLiquidShare, Range::closed(0, 1));
 
   s.pressureConvention =
       d.wordOr("pressureConvention", s.pressureConvention, {"raw", "density", "both"});
-  s.liquidDensity = d.scalarOr("liquidDensity", s.liquidDensity, Range::positive());
+  // The liquid's density: an explicit liquidDensity wins over sceneProperties liquid.density (a
+  // mixture's liquid), with a warning when the two differ.
+  const std::string sceneFile = scene.caseDir + "/constant/sceneProperties";
+  if (d.has("liquidDensity")) {
+    s.liquidDensity = d.scalar("liquidDensity", Range::positive());
+    s.liquidDensitySource = d.where("liquidDensity");
+    if (scene.fluidDensity > 0 && scene.fluidDensity != s.liquidDensity)
+      s.liquidDensityWarning = d.where("liquidDensity") + " = " + num(s.liquidDensity) +
+                               " kg/m3 overrides liquid.density = " + num(scene.fluidDensity) +
+                               " kg/m3 of " + sceneFile;
+  } else if (scene.fluidDensity > 0) {
+    s.liquidDensity = scene.fluidDensity;
+    s.liquidDensitySource = sceneFile + ": entry 'liquid.density'";
+  } else {
+    s.liquidDensitySource = "none: " + sceneFile + " (content " + scene.content +
+                            ") has no liquid and " + dictFile + " no liquidDensity";
+  }
   s.solidDensity = scene.particles.density;
   if (d.has("viscosity")) {
     const Dictionary& v = d.subDict("viscosity");
@@ -138,6 +159,12 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
 
   // Snapshot times are step * dt, off the nominal multiples of writeInterval by up to dt / 2.
   s.timeTolerance = d.scalarOr("timeTolerance", 0.5 * scene.timeStepUsed(), Range::nonNegative());
+  // A coupled run writes the fluid at the first CFD step at or after each multiple of
+  // writeInterval, so a fluid time lags its snapshot by up to one CFD step; beyond half the
+  // interval a fluid time could pair with the neighbouring snapshot.
+  s.pairTolerance = d.scalarOr("pairTolerance", 0.1 * scene.writeInterval,
+                               Range::closed(0, 0.5 * scene.writeInterval));
+  s.pairToleranceWhere = d.where("pairTolerance");
 
   if (d.has("regions")) {
     const Dictionary& r = d.subDict("regions");
@@ -179,12 +206,13 @@ std::string ExtractSettings::fingerprint() const {
   s << std::setprecision(17) << "grid " << x0 << ' ' << x1 << ' ' << nx << ' ' << y0 << ' ' << y1
     << ' ' << ny << "; thresholds " << thresholds.minVelocity << ' ' << thresholds.minPressure
     << ' ' << thresholds.minSolidFraction << ' ' << thresholds.minSaturation << ' '
-    << thresholds.minDenominator << ' ' << thresholds.minParticleSamples << "; pressure "
-    << pressureConvention << ' ' << liquidDensity << ' ' << solidDensity << "; viscosity "
-    << haveViscosities << ' ' << nuSolid << ' ' << nuFluid << "; fluid " << fluidSource << ' '
-    << fluidNames.liquidFraction << ' ' << fluidNames.voidFraction << ' ' << fluidNames.velocity
-    << ' ' << fluidNames.pressure << ' ' << fluidNames.centres << ' ' << fluidNames.volumes
-    << "; stress " << stressKineticTerm << "; tol " << timeTolerance << "; regions";
+    << thresholds.minDenominator << ' ' << thresholds.minParticleSamples << ' '
+    << thresholds.minLiquidShare << "; pressure " << pressureConvention << ' ' << liquidDensity
+    << ' ' << solidDensity << "; viscosity " << haveViscosities << ' ' << nuSolid << ' ' << nuFluid
+    << "; fluid " << fluidSource << ' ' << fluidNames.liquidFraction << ' '
+    << fluidNames.voidFraction << ' ' << fluidNames.velocity << ' ' << fluidNames.pressure << ' '
+    << fluidNames.centres << ' ' << fluidNames.volumes << "; stress " << stressKineticTerm
+    << "; tol " << timeTolerance << "; pairing " << pairTolerance << " solved-times-only; regions";
   for (const auto& r : regions)
     s << ' ' << r.name << ' ' << r.x0 << ' ' << r.x1 << ' ' << r.y0 << ' ' << r.y1;
   return s.str();

@@ -30,7 +30,8 @@ struct Thresholds {
   double minSolidFraction = 0.05;  // alpha_s below -> bin not in the mixture
   double minSaturation = 0.9;      // liquid share of the bin's fluid volume below -> not saturated
   double minDenominator = 1e-6;    // |alpha_s + lambda alpha_f| below -> Lambda masked
-  long minParticleSamples = 1;     // particle-snapshot samples in the bin below -> ratios masked
+  long minParticleSamples = 1;     // particle-snapshot samples in the bin below -> u_s, p_s masked
+  double minLiquidShare = 0.01;  // liquid share of the bin's fluid volume below -> u_f, p_f masked
 };
 
 struct ExtractSettings {
@@ -39,17 +40,26 @@ struct ExtractSettings {
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
   int nx = 0, ny = 0;
   std::vector<TimeWindow> windows;
-  bool windowsGenerated = false;  // start/end/width (true) or an explicit list (false)
+  bool windowsGenerated = false;            // start/end/width (true) or an explicit list (false)
+  double windowStart = 0, windowWidth = 0;  // windows.start, windows.width (generated windows)
+  std::string windowStartWhere, windowWidthWhere;  // "file: entry 'windows.width' (line N)"
   Thresholds thresholds;
   std::string pressureConvention = "both";  // raw | density | both
-  double liquidDensity = 1000;              // kg/m3 (density convention of lambda_p)
-  double solidDensity = 0;                  // kg/m3, from sceneProperties particles.density
+  // kg/m3 (density convention of lambda_p): extractDict liquidDensity if given, else
+  // sceneProperties liquid.density; 0 when neither exists (a dry scene).
+  double liquidDensity = 0;
+  std::string liquidDensitySource;   // where liquidDensity came from (stored in the output)
+  std::string liquidDensityWarning;  // set when liquidDensity overrides a different liquid.density
+  double solidDensity = 0;           // kg/m3, from sceneProperties particles.density
   bool haveViscosities = false;
   double nuSolid = 0, nuFluid = 0;   // m2/s, for the Lambda_eta coefficients (Eqs. 36, 40, 43)
   std::string fluidSource = "auto";  // auto | none | openfoam
   FoamFieldNames fluidNames;
   std::string stressKineticTerm = "auto";  // auto | included | excluded
   double timeTolerance = 0;                // s
+  // s: a fluid time pairs with the nearest particle snapshot at most this far from it.
+  double pairTolerance = 0;
+  std::string pairToleranceWhere;
   std::vector<Region> regions;
   std::string output = "postProcessing/mixture/mixture";  // case-relative base name
 

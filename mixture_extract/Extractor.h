@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "FluidSource.h"
@@ -21,9 +22,16 @@ struct ExtractOptions {
 };
 
 struct ExtractReport {
-  int written = 0, present = 0, deferred = 0, skipped = 0;
+  // skipped: generated windows after the last snapshot of a finished case; unpaired: generated
+  // windows whose snapshots have no solved fluid time within pairTolerance.
+  int written = 0, present = 0, deferred = 0, skipped = 0, unpaired = 0;
   long snapshotsRead = 0;
   std::string h5, xdmf, csv;
+};
+
+// The HDF5 file was updated but its XDMF index or regions CSV could not be rewritten.
+struct IndexWriteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 class Extractor {

@@ -1,9 +1,13 @@
 #include "H5Output.h"
 
+#include <fcntl.h>
 #include <hdf5.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <stdexcept>
@@ -16,7 +20,96 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void h5fail(const std::string& what) { throw std::runtime_error("HDF5: " + what); }
+// The reason HDF5 gives for the last failure: the system's message (e.g. "No space left on
+// device") when a read or write failed, else the innermost error description.
+std::string h5reason() {
+  struct Found {
+    std::string inner, system;
+  } found;
+  auto cb = [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+    Found& f = *static_cast<Found*>(data);
+    const std::string desc = e->desc ? e->desc : "";
+    if (n == 0) f.inner = desc;
+    const std::string key = "error message = '";
+    const size_t b = desc.find(key);
+    if (f.system.empty() && b != std::string::npos) {
+      const size_t e2 = desc.find('\'', b + key.size());
+      f.system = desc.substr(b + key.size(), e2 == std::string::npos ? e2 : e2 - b - key.size());
+    }
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, cb, &found);
+  return !found.system.empty() ? found.system : found.inner;
+}
+
+[[noreturn]] void h5fail(const std::string& what) {
+  const std::string why = h5reason();
+  throw std::runtime_error("HDF5: " + what + (why.empty() ? std::string() : " (" + why + ")"));
+}
+
+// Before any other HDF5 call: no exit handler (see H5Output.h) and no error printing (failures
+// are reported through exceptions).
+void initHdf5() {
+  static const bool done = [] {
+    H5dont_atexit();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)done;
+}
+
+bool sameValue(double a, double b) {
+  return std::fabs(a - b) <= 1e-12 * std::max(1.0, std::max(std::fabs(a), std::fabs(b)));
+}
+
+std::string num(double v) { return formatNumber(v, 8); }
+
+// Copies src to dst, naming the system's reason on failure (std::filesystem::copy_file reports
+// a full disk as an input/output error).
+void copyFile(const std::string& src, const std::string& dst) {
+  auto fail = [&](const std::string& what, int err) {
+    throw std::runtime_error(dst + ": cannot copy " + src + " (" + what + ": " +
+                             std::strerror(err) + ")");
+  };
+  const int in = ::open(src.c_str(), O_RDONLY);
+  if (in < 0) fail("open", errno);
+  const int out = ::open(dst.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (out < 0) {
+    const int e = errno;
+    ::close(in);
+    fail("create", e);
+  }
+  std::vector<char> buf(1 << 20);
+  int err = 0;
+  const char* what = "";
+  for (;;) {
+    const ssize_t n = ::read(in, buf.data(), buf.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      err = errno;
+      what = "read";
+      break;
+    }
+    if (n == 0) break;
+    for (ssize_t done = 0; done < n && !err;) {
+      const ssize_t w = ::write(out, buf.data() + done, static_cast<size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) {
+        err = errno;
+        what = "write";
+      } else {
+        done += w;
+      }
+    }
+    if (err) break;
+  }
+  ::close(in);
+  if (::close(out) != 0 && !err) {
+    err = errno;
+    what = "close";
+  }
+  if (err) fail(what, err);
+}
 
 hid_t check(hid_t id, const std::string& what) {
   if (id < 0) h5fail(what + " failed");
@@ -74,6 +167,14 @@ void numberAttr(hid_t obj, const std::string& name, double value) {
              "attribute " + name),
        H5Aclose);
   check(H5Awrite(a, H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
+}
+
+double readNumberAttr(hid_t obj, const std::string& name, double def) {
+  if (H5Aexists(obj, name.c_str()) <= 0) return def;
+  Id a(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name), H5Aclose);
+  double v = def;
+  check(H5Aread(a, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+  return v;
 }
 
 std::string readTextAttr(hid_t obj, const std::string& name) {
@@ -205,47 +306,129 @@ struct H5Output::Impl {
   const AveragingGrid* grid = nullptr;
   const ExtractSettings* settings = nullptr;
   bool committed = false;
+  bool failed = false;  // an HDF5 call on the file failed: never touch it again
+  fs::path createdDir;  // the outermost directory this run created for the file (else empty)
+  // Without a commit: removes the temporary file and the directories this run created.
+  void discard() {
+    std::error_code ec;
+    if (fs::is_regular_file(tmp, ec)) fs::remove(tmp, ec);
+    if (!createdDir.empty())
+      for (fs::path d = fs::path(path).parent_path();; d = d.parent_path()) {
+        if (!fs::remove(d, ec) || d == createdDir) break;  // stops at a non-empty directory
+      }
+  }
 };
+
+std::vector<std::pair<double, double>> existingWindows(const std::string& path,
+                                                       const ExtractSettings& settings) {
+  initHdf5();
+  std::vector<std::pair<double, double>> existing;
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0)
+    throw InputError(path +
+                     ": exists but is not a readable HDF5 file; delete it or run with "
+                     "-overwrite");
+  Id file(f, H5Fclose);
+  const std::string fp = readTextAttr(file, "settings_fingerprint");
+  if (fp != settings.fingerprint())
+    throw InputError(path +
+                     ": was made with other extractor settings (grid, thresholds, "
+                     "conventions, fluid or regions differ from " +
+                     settings.dictFile +
+                     "); delete it or run with -overwrite to start it again.\n  file:     " + fp +
+                     "\n  settings: " + settings.fingerprint());
+  const std::string again =
+      ": appending would interleave two window series in one file and one XDMF series; run with "
+      "-overwrite to start the file again, or give -output BASE for a second file";
+  const std::string kind = readTextAttr(file, "windows_kind");
+  const std::string kindNow = settings.windowsGenerated ? "start/end/width" : "list";
+  if (!kind.empty() && kind != kindNow)
+    throw InputError(path + ": holds windows from windows." +
+                     (kind == "list" ? std::string("list") : std::string("start/end/width")) +
+                     " (root attribute windows_kind '" + kind + "'), but " + settings.dictFile +
+                     " now gives windows." + kindNow + again);
+  if (kind == "start/end/width" && settings.windowsGenerated) {
+    const double w = readNumberAttr(file, "windows_width_s", settings.windowWidth);
+    const double t = readNumberAttr(file, "windows_start_s", settings.windowStart);
+    if (!sameValue(w, settings.windowWidth))
+      throw InputError(path + ": holds windows of width " + num(w) +
+                       " s (root attribute windows_width_s), but " + settings.windowWidthWhere +
+                       " is now " + num(settings.windowWidth) + " s" + again);
+    if (!sameValue(t, settings.windowStart))
+      throw InputError(path + ": holds windows starting from " + num(t) +
+                       " s (root attribute windows_start_s), but " + settings.windowStartWhere +
+                       " is now " + num(settings.windowStart) + " s" + again);
+  }
+  {
+    Id w(check(H5Gopen2(file, "windows", H5P_DEFAULT), "open /windows"), H5Gclose);
+    const std::vector<double> t0 = read1d(w, "t0"), t1 = read1d(w, "t1");
+    for (size_t k = 0; k < t0.size(); ++k) existing.emplace_back(t0[k], t1[k]);
+  }
+  // A stored window overlapping a settings window must be that window. The settings' windows
+  // sorted by start, with the running maximum of their ends, bound the search.
+  std::vector<const TimeWindow*> sorted;
+  for (const TimeWindow& w : settings.windows) sorted.push_back(&w);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const TimeWindow* a, const TimeWindow* b) { return a->t0 < b->t0; });
+  std::vector<double> maxEnd(sorted.size());
+  for (size_t k = 0; k < sorted.size(); ++k)
+    maxEnd[k] = std::max(k ? maxEnd[k - 1] : sorted[k]->t1, sorted[k]->t1);
+  for (const auto& [a, b] : existing) {
+    size_t k = std::upper_bound(maxEnd.begin(), maxEnd.end(), a) - maxEnd.begin();
+    for (; k < sorted.size() && sorted[k]->t0 < b; ++k) {
+      const TimeWindow& w = *sorted[k];
+      const bool same = sameValue(w.t0, a) && sameValue(w.t1, b);
+      if (!same && w.t1 > a && w.t0 < b && !sameValue(w.t1, a) && !sameValue(w.t0, b))
+        throw InputError(path + ": holds the window [" + num(a) + ", " + num(b) + ") s, which " +
+                         w.origin + " [" + num(w.t0) + ", " + num(w.t1) +
+                         ") s overlaps without matching it" + again);
+    }
+  }
+  return existing;
+}
 
 H5Output::H5Output(const std::string& path, const AveragingGrid& grid,
                    const ExtractSettings& settings, const RootAttributes& attrs, bool overwrite)
     : impl_(std::make_unique<Impl>()) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  initHdf5();
   Impl& m = *impl_;
   m.path = path;
   m.tmp = path + ".tmp";
   m.grid = &grid;
   m.settings = &settings;
+  for (fs::path d = fs::path(path).parent_path(); !d.empty() && !fs::exists(d); d = d.parent_path())
+    m.createdDir = d;
   fs::create_directories(fs::path(path).parent_path());
   fs::remove(m.tmp);  // left by an interrupted run
   const bool resume = fs::exists(path) && !overwrite;
+  if (resume) existing_ = mx::existingWindows(path, settings);
+  try {
+    create(resume, attrs);
+  } catch (...) {
+    // The constructor did not finish, so no destructor runs: leave no temporary file behind.
+    m.failed = true;
+    m.discard();
+    throw;
+  }
+}
+
+void H5Output::create(bool resume, const RootAttributes& attrs) {
+  Impl& m = *impl_;
+  const AveragingGrid& grid = *m.grid;
+  const ExtractSettings& settings = *m.settings;
   if (resume) {
-    {
-      const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-      if (f < 0)
-        throw InputError(path +
-                         ": exists but is not a readable HDF5 file; delete it or run with "
-                         "-overwrite");
-      Id file(f, H5Fclose);
-      const std::string fp = readTextAttr(file, "settings_fingerprint");
-      if (fp != settings.fingerprint())
-        throw InputError(path +
-                         ": was made with other extractor settings (grid, thresholds, "
-                         "conventions, fluid or regions differ from " +
-                         settings.dictFile +
-                         "); delete it or run with -overwrite to start it again.\n  file:     " +
-                         fp + "\n  settings: " + settings.fingerprint());
-      Id w(check(H5Gopen2(file, "windows", H5P_DEFAULT), "open /windows"), H5Gclose);
-      const std::vector<double> t0 = read1d(w, "t0"), t1 = read1d(w, "t1");
-      for (size_t k = 0; k < t0.size(); ++k) existing_.emplace_back(t0[k], t1[k]);
-    }
-    fs::copy_file(path, m.tmp, fs::copy_options::overwrite_existing);
+    copyFile(m.path, m.tmp);
     m.file = check(H5Fopen(m.tmp.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open " + m.tmp);
   } else {
     m.file =
         check(H5Fcreate(m.tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + m.tmp);
     textAttr(m.file, "created_utc", utcNow());
     textAttr(m.file, "settings_fingerprint", settings.fingerprint());
+    textAttr(m.file, "windows_kind", settings.windowsGenerated ? "start/end/width" : "list");
+    if (settings.windowsGenerated) {
+      numberAttr(m.file, "windows_start_s", settings.windowStart);
+      numberAttr(m.file, "windows_width_s", settings.windowWidth);
+    }
     const hsize_t ny = grid.ny(), nx = grid.nx();
     {
       Id g(group(m.file, "grid"), H5Gclose);
@@ -266,8 +449,11 @@ H5Output::H5Output(const std::string& path, const AveragingGrid& grid,
     {
       Id g(group(m.file, "windows"), H5Gclose);
       textAttr(g, "rule",
-               "a window holds the snapshots (fluid times) t with t0 - tol <= t < t1 - "
-               "tol, tol = timeTolerance (root attribute time_tolerance_s)");
+               "a window holds the snapshots t with t0 - tol <= t < t1 - tol, tol = "
+               "timeTolerance (root attribute time_tolerance_s); with fluid data, only the "
+               "snapshots paired with a solved fluid time (nearest, within pair_tolerance_s; "
+               "the t = 0 fluid write is the unsolved initial state and is left out), each "
+               "averaged with its fluid time (root attribute fluid_times)");
       extendible(g, "t0", H5T_IEEE_F64LE, {}, "s", "window start");
       extendible(g, "t1", H5T_IEEE_F64LE, {}, "s", "window end");
       extendible(g, "t_mid", H5T_IEEE_F64LE, {}, "s", "(t0 + t1) / 2, the time given to ParaView");
@@ -275,8 +461,16 @@ H5Output::H5Output(const std::string& path, const AveragingGrid& grid,
                  "first particle snapshot in the window");
       extendible(g, "t_last_snapshot", H5T_IEEE_F64LE, {}, "s",
                  "last particle snapshot in the window");
+      extendible(g, "t_first_fluid", H5T_IEEE_F64LE, {}, "s",
+                 "first fluid time in the window (NaN without fluid data)");
+      extendible(g, "t_last_fluid", H5T_IEEE_F64LE, {}, "s",
+                 "last fluid time in the window (NaN without fluid data)");
+      extendible(g, "max_pair_gap", H5T_IEEE_F64LE, {}, "s",
+                 "largest |fluid time - its snapshot's time| over the window's pairs (NaN "
+                 "without fluid data)");
       extendible(g, "n_snapshots", H5T_STD_I64LE, {}, "1", "particle snapshots averaged");
-      extendible(g, "n_fluid_times", H5T_STD_I64LE, {}, "1", "fluid time directories averaged");
+      extendible(g, "n_fluid_times", H5T_STD_I64LE, {}, "1",
+                 "fluid time directories averaged (one per paired snapshot)");
       extendible(g, "particles_mean", H5T_IEEE_F64LE, {}, "1", "particles per snapshot");
       extendible(g, "particle_volume_mean", H5T_IEEE_F64LE, {}, "m3",
                  "particle volume per snapshot");
@@ -361,14 +555,21 @@ H5Output::H5Output(const std::string& path, const AveragingGrid& grid,
 }
 
 H5Output::~H5Output() {
-  if (impl_->file >= 0) H5Fclose(impl_->file);
-  if (!impl_->committed) {
-    std::error_code ec;
-    fs::remove(impl_->tmp, ec);
-  }
+  if (impl_->file >= 0 && !impl_->failed) H5Fclose(impl_->file);
+  if (!impl_->committed) impl_->discard();
 }
 
 void H5Output::append(const WindowResult& w) {
+  try {
+    appendRows(w);
+  } catch (...) {
+    impl_->failed = true;
+    throw;
+  }
+  existing_.emplace_back(w.window.t0, w.window.t1);
+}
+
+void H5Output::appendRows(const WindowResult& w) {
   Impl& m = *impl_;
   const AveragingGrid& g = *m.grid;
   const int nb = g.size();
@@ -382,6 +583,9 @@ void H5Output::append(const WindowResult& w) {
     appendRow(gw, "t_mid", H5T_NATIVE_DOUBLE, &tMid);
     appendRow(gw, "t_first_snapshot", H5T_NATIVE_DOUBLE, &w.tFirst);
     appendRow(gw, "t_last_snapshot", H5T_NATIVE_DOUBLE, &w.tLast);
+    appendRow(gw, "t_first_fluid", H5T_NATIVE_DOUBLE, &w.tFirstFluid);
+    appendRow(gw, "t_last_fluid", H5T_NATIVE_DOUBLE, &w.tLastFluid);
+    appendRow(gw, "max_pair_gap", H5T_NATIVE_DOUBLE, &w.maxPairGap);
     appendRow(gw, "n_snapshots", H5T_NATIVE_LLONG, &ns);
     appendRow(gw, "n_fluid_times", H5T_NATIVE_LLONG, &nf);
     appendRow(gw, "particles_mean", H5T_NATIVE_DOUBLE, &w.particlesMean);
@@ -454,20 +658,24 @@ void H5Output::append(const WindowResult& w) {
       appendRow(rg, "mass_balance_bins", H5T_NATIVE_LLONG, &nbins);
     }
   }
-  existing_.emplace_back(w.window.t0, w.window.t1);
 }
 
 void H5Output::commit() {
   Impl& m = *impl_;
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flush");
-  check(H5Fclose(m.file), "close");
+  try {
+    check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flush " + m.tmp);
+    check(H5Fclose(m.file), "close " + m.tmp);
+  } catch (...) {
+    m.failed = true;
+    throw;
+  }
   m.file = -1;
   fs::rename(m.tmp, m.path);
   m.committed = true;
 }
 
 StoredOutput readStoredOutput(const std::string& path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  initHdf5();
   StoredOutput out;
   Id file(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path), H5Fclose);
   {

@@ -1,13 +1,17 @@
 // HDF5 output of the extractor: one file per case, appended window by window.
 //   /                 root attributes: mixflow version, case parameters, settings, conventions
 //   /grid             x_edges, y_edges, z_edges, x, y (bin centres), bin_volume
-//   /windows          t0, t1, t_mid, snapshot counts, n_valid_<field>, n_masked_<reason> (nw)
+//   /windows          t0, t1, t_mid, snapshot and fluid times and counts, max_pair_gap,
+//                     n_valid_<field>, n_masked_<reason> (nw)
 //   /fields/<name>    (nw, ny, nx) float64, attributes units, meaning, mask
 //   /masks            valid_<name> (uint8) and reasons (uint16 bit set, bits in the attributes)
 //   /counts           particle_samples, particle_equivalents, fluid_samples (nw, ny, nx)
 //   /regions/<name>/  region averages (nw): <field>, valid_<field>, reasons, counts
 // An update works on a copy (<file>.tmp) that is renamed over the file only when complete, so an
-// interrupted run leaves the previous file intact.
+// interrupted run leaves the previous file intact. HDF5's exit handler is switched off: after a
+// failed write (a full disk) the library's state of that file is unsafe to close (HDF5 1.10
+// segfaults closing it, also at exit), so a failed file is left to the operating system and the
+// process exits with its own status.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +51,13 @@ struct StoredOutput {
 };
 StoredOutput readStoredOutput(const std::string& path);
 
+// The windows (t0, t1) of an existing output file, checked read-only against the settings before
+// anything is written: InputError (naming the file, the entry and the stored value) when the file
+// was made with other settings (fingerprint), another window kind, start or width, or holds a
+// window overlapping one of the settings' windows without matching it (two widths interleaved).
+std::vector<std::pair<double, double>> existingWindows(const std::string& path,
+                                                       const ExtractSettings& settings);
+
 class H5Output {
  public:
   // Opens `path` for update. An existing file is checked (same grid and settings fingerprint; else
@@ -65,6 +76,8 @@ class H5Output {
   void commit();
 
  private:
+  void create(bool resume, const RootAttributes& attrs);
+  void appendRows(const WindowResult& w);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<std::pair<double, double>> existing_;

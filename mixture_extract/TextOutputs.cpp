@@ -1,7 +1,9 @@
 #include "TextOutputs.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -15,11 +17,23 @@ namespace fs = std::filesystem;
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
+  bool ok = false;
+  int err = 0;
   {
     std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error(tmp + ": write failed");
+    if (f) {
+      f << text;
+      f.flush();
+      if (f) f.close();
+      ok = !f.fail();
+    }
+    err = errno;
+  }
+  if (!ok) {
+    std::error_code ec;
+    if (fs::is_regular_file(tmp, ec)) fs::remove(tmp, ec);
+    throw std::runtime_error(tmp + ": write failed (" + std::strerror(err) + "); " + path +
+                             " is left as it was");
   }
   fs::rename(tmp, path);
 }

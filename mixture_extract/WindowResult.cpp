@@ -22,6 +22,7 @@ WindowResult finaliseWindow(const TimeWindow& w, const BinAccumulator& acc, cons
   res.fluidTimes = acc.fluidTimes();
   res.tFirst = acc.snapshotTimes.front();
   res.tLast = acc.snapshotTimes.back();
+  res.tFirstFluid = res.tLastFluid = res.maxPairGap = std::nan("");  // set by the caller
   res.particleVolumeMean = acc.particleVolumeTotal() / res.snapshots;
   res.particleVolumeOutsideMean = acc.volumeOutsideGrid() / res.snapshots;
   res.particlesMean = acc.particleCount() / res.snapshots;

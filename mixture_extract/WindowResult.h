@@ -22,13 +22,15 @@ struct RegionResult {
 struct WindowResult {
   TimeWindow window;
   int snapshots = 0, fluidTimes = 0;
-  double tFirst = 0, tLast = 0;          // first and last snapshot time in the window
-  double particleVolumeMean = 0;         // m3 per snapshot
-  double particleVolumeOutsideMean = 0;  // m3 per snapshot outside the grid
-  double particlesMean = 0;              // particles per snapshot
-  std::vector<BinSums> sums;             // per bin
-  std::vector<MixtureValues> bins;       // per bin
-  std::vector<RegionResult> regions;     // per settings region
+  double tFirst = 0, tLast = 0;            // first and last snapshot time in the window
+  double tFirstFluid = 0, tLastFluid = 0;  // first and last fluid time (NaN without fluid)
+  double maxPairGap = 0;                   // max |fluid time - its snapshot's time| (NaN: none)
+  double particleVolumeMean = 0;           // m3 per snapshot
+  double particleVolumeOutsideMean = 0;    // m3 per snapshot outside the grid
+  double particlesMean = 0;                // particles per snapshot
+  std::vector<BinSums> sums;               // per bin
+  std::vector<MixtureValues> bins;         // per bin
+  std::vector<RegionResult> regions;       // per settings region
 };
 
 // Bins whose centre lies inside the region.

@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
   } catch (const mixflow::InputError& e) {
     std::cerr << "mixflowExtract: input error: " << e.what() << std::endl;
     return 2;
+  } catch (const mixflow::mx::IndexWriteError& e) {
+    std::cerr << "mixflowExtract: extraction stopped: " << e.what() << std::endl;
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "mixflowExtract: extraction stopped: " << e.what()
               << "\n  The output files are unchanged (updates go through temporary files)."

@@ -15,12 +15,14 @@ def write(path, text):
 
 
 def scene(case, L=0.3, H=0.12, W=0.06, channel=(0.8, 0.4), d=0.012, end_time=0.1, write_interval=0.01,
-          content="particles"):
+          content="particles", liquid_density=None):
+    """liquid_density: writes liquid { density ...; } (a mixture scene's liquid)."""
+    liquid = f"liquid {{ density {liquid_density}; }}\n" if liquid_density is not None else ""
     write(os.path.join(case, "constant/sceneProperties"),
           "FoamFile { version 2.0; format ascii; class dictionary; object sceneProperties; }\n"
           f"content {content};\nsample {{ length {L}; height {H}; width {W}; }}\n"
           f"channel {{ length {channel[0]}; height {channel[1]}; sideWalls periodic; }}\n"
-          f"particles {{ diameter {d}; }}\n")
+          f"particles {{ diameter {d}; }}\n" + liquid)
     write(os.path.join(case, "system/demDict"),
           "youngModulusFactor 1e-4;\nsampleInterval 0.01;\n")
     write(os.path.join(case, "system/controlDict"),
@@ -97,3 +99,62 @@ def jittered_lattice(L, H, W, d, spacing=1.05, jitter=0.2, seed=1):
     p = np.stack(np.meshgrid(xs, ys, zs, indexing="ij"), -1).reshape(-1, 3)
     p[:, :2] += rng.uniform(-jitter * d, jitter * d, (len(p), 2))
     return p
+
+
+def u_s(t):
+    return 0.4 + 0.3 * np.sin(7 * t)
+
+
+def w_s(t):
+    return -0.05 - 0.02 * np.cos(5 * t)
+
+
+def drift_case(case, snap_times, fluid_times, partners=None, extract_dict="", content="mixture",
+               liquid_density=1000, top_alpha=5e-8, end_time=0.1, write_interval=0.01):
+    """A finished mixture case (liquid.density liquid_density) of particles (jittered lattice, L 0.3, H 0.12, W 0.06, d 0.012, rho_s 2500)
+    moving uniformly at u_s(t), w_s(t) with a static contact pressure of 200 Pa (dumped with the
+    LAMMPS kinetic term), snapshots at snap_times; fluid cells 12 x 9 over [0, 0.3] x [0, 0.18]:
+    liquid (alpha 1, eps_f 0.45) below y = 0.12, above it air carrying a VOF smear alpha = top_alpha
+    at 7.9 m/s. The fluid written at fluid_times[i] moves at 1.3 (u_s, w_s)(partners[i]) (the
+    snapshot it belongs to; default its own time) with p = 500 Pa; a fluid time 0 holds the
+    unsolved initial state (U = 0, p = -rho g y, rho 1000). Grid 6 x 3 bins over [0, 0.3] x
+    [0, 0.18] (the top row holds no particle), unless extract_dict gives one."""
+    L, H, W, d, rho = 0.3, 0.12, 0.06, 0.012, 2500.0
+    if os.path.exists(case):
+        import shutil
+        shutil.rmtree(case)
+    scene(case, L=L, H=H, W=W, d=d, end_time=end_time, write_interval=write_interval, content=content,
+          liquid_density=liquid_density)
+    write(os.path.join(case, "system/extractDict"), extract_dict or (
+        "grid { x (0 0.3 6); y (0 0.18 3); }\nwindows { start 0; end 0.1; width 0.05; }\n"
+        "fluid { source openfoam; }\n"))
+    x = jittered_lattice(L, H, W, d)
+    n = len(x)
+    r = np.full(n, d / 2)
+    m = rho * np.pi / 6 * d**3 * np.ones(n)
+    entries = []
+    for k, t in enumerate(snap_times):
+        v = np.column_stack([np.full(n, u_s(t)), np.full(n, w_s(t)), np.zeros(n)])
+        c = -200.0 * np.pi / 6 * d**3
+        st = np.column_stack([c - m * v[:, 0]**2, c - m * v[:, 1]**2, np.full(n, c), -m * v[:, 0] * v[:, 1],
+                              np.zeros(n), np.zeros(n)])
+        name = f"particles/particles_{k}.vtk"
+        vtk(os.path.join(case, "VTK", name), x, v, m, r, st)
+        entries.append((name, t))
+    series(case, entries)
+    cx, cy = np.meshgrid((np.arange(12) + 0.5) * 0.025, (np.arange(9) + 0.5) * 0.02)
+    C = np.column_stack([cx.ravel(), cy.ravel(), np.full(cx.size, W / 2)])
+    Vc = np.full(len(C), 0.025 * 0.02 * W)
+    liquid = C[:, 1] < H
+    alpha = np.where(liquid, 1.0, top_alpha)
+    for i, t in enumerate(fluid_times):
+        if t == 0:
+            U = np.zeros((len(C), 3))
+            p = -1000 * 9.81 * C[:, 1]
+        else:
+            ts = partners[i] if partners is not None else t
+            U = np.column_stack([np.where(liquid, 1.3 * u_s(ts), 7.9), np.where(liquid, 1.3 * w_s(ts), 0),
+                                 np.zeros(len(C))])
+            p = np.full(len(C), 500.0)
+        foam_time(case, "%.10g" % t, C, Vc, U, p, alpha, np.full(len(C), 0.45))
+    finish(case)

@@ -5,6 +5,7 @@
 //     material above the bin;
 //   issue 5 test 4: bins with u_s = 0 (and without particles, with p_s = 0) are masked and counted,
 //     with floating-point traps on: nothing divides by zero;
+//   issue 23: u_f masked where the bin holds little liquid, p_s masked without particle samples;
 //   streaming stress and the Eq. 9 residual on fields with known answers.
 #include <fenv.h>
 #include <gtest/gtest.h>
@@ -221,7 +222,10 @@ TEST(Drift, ZeroVelocityBinsAreMaskedAndCounted) {
         EXPECT_TRUE(m.reasons & kNoParticles);
         EXPECT_FALSE(m.valid(fUs));
         EXPECT_TRUE(std::isnan(m.value[fUs]));
-        EXPECT_EQ(m.value[fPs], 0.0);  // no particles: no stress (a true zero, valid)
+        // No particle sample: p_s and the stress are masked (kParticleMask), never a valid 0.
+        for (FieldId f : {fPs, fPsContact, fPsKinetic, fSigmaXX, fSigmaYY, fSigmaZZ, fSigmaXY})
+          EXPECT_FALSE(m.valid(f)) << fieldDef(f).name;
+        EXPECT_TRUE(m.valid(fAlphaS));  // alpha_s = 0 is the answer, not a missing value
         EXPECT_FALSE(m.valid(fLambdaPRaw));
         ++noParticles;
       } else if (moving) {
@@ -254,6 +258,50 @@ TEST(Drift, ZeroVelocityBinsAreMaskedAndCounted) {
   EXPECT_EQ(maskedU, 8);
   EXPECT_EQ(noParticles, 4);
   EXPECT_EQ(maskedP, 4);
+}
+
+// Issue 23: u_f, w_f, p_f are masked (little_liquid) where the liquid share of the bin's fluid
+// volume is below thresholds.minLiquidShare (default 0.01): a bin whose only "liquid" is a VOF
+// interface's smeared tail (alpha_l = 5e-8) moving with the air (7.9 m/s) gives no u_f; a bin at
+// the threshold keeps it. p_s needs thresholds.minParticleSamples samples (bins with one sample
+// keep it when the threshold is 1, lose it when it is 2).
+TEST(Drift, LittleLiquidAndFewParticlesAreMasked) {
+  const AveragingGrid g(0.0, 0.3, 3, 0.0, 0.1, 1, 0.05);  // three bins side by side
+  ParticleSnapshot s;
+  const double r = 0.005, c = -300 * sphereVolume(r);
+  for (double x : {0.05, 0.15, 0.25}) addParticle(s, x, 0.05, 0.025, r, 2500, 0.5, 0, 0, {c, c, c});
+  const std::vector<double> alpha = {5e-8, 0.01, 1.0};
+  SyntheticFluidSource fluid(0.0, 0.3, 3, 0.0, 0.1, 1, 0.05, {0.0}, [&](double x, double, double) {
+    FluidState f;
+    f.alphaL = alpha[static_cast<int>(x / 0.1)];
+    f.ux = x < 0.1 ? 7.9 : 0.6;
+    f.p = 100;
+    return f;
+  });
+  BinAccumulator acc(g, false);
+  acc.addSnapshot(s);
+  acc.addFluid(fluid.cells(0.0));
+  ExtractSettings st = baseSettings(g);
+  const WindowResult res = finaliseWindow({0, 1, "test"}, acc, g, st);
+  const MixtureValues &smear = res.bins[0], &edge = res.bins[1], &full = res.bins[2];
+  EXPECT_NEAR(smear.value[fSaturation], 5e-8, 1e-20);
+  EXPECT_TRUE(smear.valid(fSaturation));
+  EXPECT_TRUE(smear.reasons & kLittleLiquid);
+  for (FieldId f : {fUf, fWf, fPf, fUm, fLambdaU}) EXPECT_FALSE(smear.valid(f)) << fieldDef(f).name;
+  EXPECT_FALSE(edge.reasons & kLittleLiquid) << "saturation 0.01 is at the threshold";
+  EXPECT_TRUE(edge.valid(fUf));
+  EXPECT_TRUE(full.valid(fUf));
+  EXPECT_NEAR(full.value[fUf], 0.6, 1e-15);
+  for (const MixtureValues& m : res.bins) EXPECT_TRUE(m.valid(fPs));
+  st.thresholds.minParticleSamples = 2;
+  const WindowResult few = finaliseWindow({0, 1, "test"}, acc, g, st);
+  for (const MixtureValues& m : few.bins) {
+    EXPECT_TRUE(m.reasons & kFewParticleSamples);
+    EXPECT_FALSE(m.valid(fPs));
+    EXPECT_FALSE(m.valid(fUs));
+  }
+  std::printf("u_f at saturation 5e-8: masked (reasons %u); at 0.01: %.3g m/s, valid\n",
+              smear.reasons, edge.value[fUf]);
 }
 
 // Streaming stress: two particles in one bin moving at +-v0 along x on top of a mean drift, the

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Issue 5 test 6: bad input stops mixflowExtract with exit status 2 and a message naming the file,
-the entry and the allowed range (or the available data). Each case breaks one thing in a copy of a
+the entry and the allowed range (or the available data), before anything is written (the output
+directory is compared before and after each case). Each case breaks one thing in a copy of a
 valid synthetic case (particles only, snapshots every 0.01 s up to 0.09 s, finished).
 
 usage: test_extract_bad_input.py MIXFLOWEXTRACT WORKDIR"""
+import hashlib
 import os
 import re
 import shutil
@@ -98,7 +100,27 @@ CASES = [
     ("settings changed since the file was made", run_then_regrid, [],
      ["mixture.h5", "other extractor settings", "-overwrite"]),
     ("unknown option", None, ["-bogus"], ["unknown option '-bogus'"]),
+    ("pair tolerance above half the write interval", edit_dict(r"windows", "pairTolerance 0.006;\nwindows"), [],
+     ["system/extractDict", "pairTolerance", "0.006", "[0, 0.005]"]),
+    ("liquid share out of range", edit_dict(r"windows", "thresholds { minLiquidShare 1.5; }\nwindows"), [],
+     ["system/extractDict", "thresholds.minLiquidShare", "1.5", "[0, 1]"]),
+    ("window width changed since the file was made", lambda case: (
+        subprocess.run([exe, "-case", case], capture_output=True, check=True),
+        sc.write(os.path.join(case, "system/extractDict"),
+                 "grid { x (0 0.3 6); y (0 0.12 3); }\nwindows { start 0; width 0.05; }\n"),
+        subprocess.run([exe, "-case", case, "-overwrite"], capture_output=True, check=True),
+        edit_dict(r"width 0.05", "width 0.03")(case)), [],
+     ["mixture.h5", "width 0.05 s", "windows.width", "now 0.03 s", "-overwrite"]),
 ]
+
+
+def outputs(case):
+    """Digest of every file under the case's output directory (None when there is none)."""
+    d = os.path.join(case, "postProcessing/mixture")
+    if not os.path.isdir(d):
+        return None
+    return {n: hashlib.sha256(open(os.path.join(d, n), "rb").read()).hexdigest() for n in sorted(os.listdir(d))}
+
 
 failures = 0
 for name, change, extra, expected in CASES:
@@ -107,10 +129,13 @@ for name, change, extra, expected in CASES:
         shutil.copytree(valid, case)
     if change:
         change(case)
+    before = outputs(case)
     args = extra if "-case" in extra else ["-case", case, *extra]
     res = subprocess.run([exe, *args], capture_output=True, text=True)
     msg = res.stdout + res.stderr
     missing = [f for f in expected if f not in msg]
+    if outputs(case) != before:
+        missing.append("(the outputs changed: bad input must stop before anything is written)")
     ok = res.returncode == 2 and not missing
     last = [ln for ln in msg.strip().splitlines() if "error" in ln or "unknown" in ln]
     print(f"{'ok  ' if ok else 'FAIL'} {name}: exit {res.returncode}; {last[0] if last else msg.strip()[:200]}")

@@ -9,7 +9,9 @@ root attributes carry the version and the case parameters; masked entries are Na
 the mask is 0 and the reason bits say why (unsaturated top row); the XDMF references datasets of
 the right shape; the tidy CSV; a still-running case defers its incomplete window and a re-run on
 the grown case appends only the new window, leaving the old data bit for bit; a stale temporary
-file from a killed run is ignored; a failing run leaves the previous file untouched.
+file from a killed run is ignored; a failing run leaves the previous file untouched; the t = 0 fluid
+write (unsolved) is left out; a changed window width or start is refused without -overwrite; windows
+after the end of the case are warned about (some) or refused (all).
 
 usage: test_extract_cli.py MIXFLOWEXTRACT WORKDIR"""
 import csv
@@ -107,8 +109,11 @@ with h5py.File(h5, "r") as f:
     nw = f["windows/t0"].shape[0]
     check(nw == 2 and list(f["windows/t0"][:]) == [0.0, 0.05], "windows t0 = [0, 0.05]")
     check(all(f["fields/" + k][0].tobytes() == old[k] for k in old), "old window unchanged bit for bit")
-    check(list(f["windows/n_snapshots"][:]) == [5, 5] and list(f["windows/n_fluid_times"][:]) == [5, 5],
-          "5 snapshots and 5 fluid times per window")
+    # The t = 0 fluid write is the unsolved initial state: left out, and with it the t = 0 snapshot
+    # (no solved partner), so both phases are averaged at the same instants.
+    check(list(f["windows/n_snapshots"][:]) == [4, 5] and list(f["windows/n_fluid_times"][:]) == [4, 5]
+          and list(f["windows/t_first_fluid"][:]) == [0.01, 0.05] and list(f["windows/max_pair_gap"][:]) == [0, 0],
+          "4 + 5 paired snapshots and fluid times (t = 0 left out), pairs 0 s apart")
     ny, nx = 3, 6
     for name, ds in f["fields"].items():
         check(ds.shape == (nw, ny, nx) and ds.attrs.get("units") is not None and len(ds.attrs["meaning"]) > 10,
@@ -138,8 +143,8 @@ with h5py.File(h5, "r") as f:
     ps = f["fields/p_s"][0]
     check(np.allclose(ps, 200 * f["fields/alpha_s"][0], rtol=1e-9, atol=1e-9),
           "p_s = 200 Pa x alpha_s (contact part; LAMMPS kinetic term removed)")
-    check(f["counts/particle_samples"][0].min() > 0 and f["counts/fluid_samples"][0, 0, 0] == 5 * 4,
-          "sample counts stored (4 cells per bin x 5 times)")
+    check(f["counts/particle_samples"][0].min() > 0 and f["counts/fluid_samples"][0, 0, 0] == 4 * 4,
+          "sample counts stored (4 cells per bin x 4 times)")
     reg = f["regions/lower"]
     check(abs(reg["lambda_u"][0] - 1.3) < 1e-12 and reg["valid_lambda_u"][0] == 1, "region 'lower': lambda_u = 1.3")
     check(reg["valid_lambda_u"][0] == 1 and f["regions/all/valid_lambda_u"][0] == 0,
@@ -183,6 +188,37 @@ check(rc == 2 and "particles_700.vtk" in out, "truncated snapshot: input error n
 check(hashlib.sha256(open(h5, "rb").read()).hexdigest() == digest and not os.path.exists(h5 + ".tmp"),
       "failed run left the previous file untouched and no temporary file")
 open(snap, "w").write(good)
+
+# A changed window width without -overwrite is refused before anything is written, naming the
+# file, the entry and the stored width (appending would interleave two widths in one series).
+digest = hashlib.sha256(open(h5, "rb").read()).hexdigest()
+dict_path = os.path.join(case, "system/extractDict")
+good_dict = open(dict_path).read()
+open(dict_path, "w").write(good_dict.replace("width 0.05;", "width 0.025;"))
+for extra in ([], ["-check"]):
+    rc, out = run(*extra)
+    print(out.strip().splitlines()[-1])
+    check(rc == 2 and "mixture.h5" in out and "windows.width" in out and "width 0.05 s" in out
+          and "now 0.025 s" in out and "-overwrite" in out,
+          f"changed width{' (-check)' if extra else ''}: refused, naming file, entry, stored 0.05 s and new 0.025 s")
+check(hashlib.sha256(open(h5, "rb").read()).hexdigest() == digest and not os.path.exists(h5 + ".tmp"),
+      "changed width: file untouched")
+open(dict_path, "w").write(good_dict.replace("start 0;", "start 0.01;"))
+rc, out = run()
+check(rc == 2 and "windows.start" in out and "from 0 s" in out, "changed start: refused, naming the entry")
+# Windows after the end of a finished case: a warning naming them (some), an input error (all).
+open(dict_path, "w").write(good_dict.replace("end 0.1;", "end 0.2;"))
+rc, out = run("-output", "after_end")
+print("\n".join(ln for ln in out.splitlines() if "warning" in ln))
+check(rc == 0 and "warning: 2 windows in [0.1, 0.2) s start after the last snapshot (t = 0.09 s)" in out,
+      "windows after the case's end: warned with their range and the last snapshot")
+open(dict_path, "w").write(good_dict.replace("start 0; end 0.1;", "start 0.5; end 0.6;"))
+rc, out = run("-output", "after_end2")
+print(out.strip().splitlines()[-1])
+check(rc == 2 and "windows.start" in out and "every window" in out and "[0, 0.09)" in out
+      and not os.path.exists(os.path.join(case, "after_end2.h5")),
+      "every window after the case's end: input error naming windows.start and its range, nothing written")
+open(dict_path, "w").write(good_dict)
 
 print(f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
