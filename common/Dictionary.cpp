@@ -343,4 +343,18 @@ void Dictionary::allowOnly(const std::vector<std::string>& keys) const {
 
 std::vector<std::string> Dictionary::keys() const { return order_; }
 
+RunTimes readRunTimes(const Dictionary& control) {
+  RunTimes t;
+  t.endTime = control.scalar("endTime", Range::positive());
+  t.writeInterval = control.scalar("writeInterval", Range::positive());
+  if (t.writeInterval > t.endTime)
+    control.fail("writeInterval",
+                 "value " + formatNumber(t.writeInterval, 6) + " s exceeds endTime (" +
+                     formatNumber(t.endTime, 6) +
+                     " s): the run would end before its first field write, particle snapshot "
+                     "and resume state; allowed range (0, " +
+                     formatNumber(t.endTime, 6) + "]");
+  return t;
+}
+
 }  // namespace mixflow

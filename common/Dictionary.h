@@ -96,4 +96,13 @@ class Dictionary {
   friend class DictionaryParser;
 };
 
+// endTime and writeInterval (s) of a case's system/controlDict, as every program reads them.
+// writeInterval must not exceed endTime: a run would otherwise end before its first field write,
+// particle snapshot and resume state (InputError naming the entry and the allowed range).
+struct RunTimes {
+  double endTime = 0;
+  double writeInterval = 0;
+};
+RunTimes readRunTimes(const Dictionary& controlDict);
+
 }  // namespace mixflow

@@ -3,7 +3,8 @@
 //
 //   demScript           "system/in.liggghts";  // LIGGGHTS commands of the scene (required)
 //   exchangeEvery       100;        // DEM steps per exchange; CFD deltaT = exchangeEvery x DEM dt
-//   forceModels         (DiFeliceDrag buoyancy viscousForce);  // only these run (required)
+//   forceModels         (DiFeliceDrag buoyancy viscousForce);  // only these run (required,
+//                                   // at least one)
 //   voidFractionModel   divided;    // divided | centre
 //   interpolation       cell;       // cell | cellPoint: fluid values at a particle
 //   sourceDistribution  volume;     // volume: reaction spread like the particle's volume;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "ContactTimes.h"
 #include "Dictionary.h"
@@ -12,6 +13,9 @@ namespace mixflow::dem {
 
 namespace {
 constexpr double kGravity = 9.81;
+// Solid grains from expanded polystyrene beads (about 15 kg/m3) to osmium (22 600 kg/m3); outside
+// it the value is a typo, and one like 1e300 overflows the particle mass inside LIGGGHTS.
+const Range kGrainDensityRange = Range::closed(10.0, 25000.0);
 
 std::string shortNum(double v) { return formatNumber(v, 4); }
 
@@ -36,7 +40,7 @@ void readParticles(const Dictionary& d, ParticleMaterial& p) {
                "restitution", "friction", "wallFriction", "rollingFriction", "rollingModel",
                "rollingViscousDamping"});
   p.diameter = d.scalarOr("diameter", p.diameter, Range::positive());
-  p.density = d.scalarOr("density", p.density, Range::positive());
+  p.density = d.scalarOr("density", p.density, kGrainDensityRange);
   p.youngModulus = d.scalarOr("youngModulus", p.youngModulus, Range::positive());
   p.wallYoungModulus = d.scalarOr("wallYoungModulus", p.wallYoungModulus, Range::positive());
   p.poisson = d.scalarOr("poissonRatio", p.poisson, {0.0, 0.5, false, true});
@@ -137,16 +141,19 @@ Scene Scene::read(const std::string& caseDir) {
 
   // controlDict holds many OpenFOAM entries; the DEM half reads only these two.
   const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
-  s.endTime = control.scalar("endTime", Range::positive());
-  s.writeInterval = control.scalar("writeInterval", Range::positive());
+  const RunTimes times = readRunTimes(control);
+  s.endTime = times.endTime;
+  s.writeInterval = times.writeInterval;
 
   // Cross-entry checks, named by the entry that has to change.
   const double d = s.particles.diameter;
-  if (s.sample.length < d || s.sample.height < d || s.sample.width < d)
-    scene.subDict("sample").fail("length",
-                                 "sample length, height and width must each be at least "
-                                 "one particle diameter (" +
-                                     shortNum(d) + " m)");
+  const std::pair<const char*, double> sizes[] = {
+      {"length", s.sample.length}, {"height", s.sample.height}, {"width", s.sample.width}};
+  for (const auto& [key, size] : sizes)
+    if (size < d)
+      scene.subDict("sample").fail(key, "value " + shortNum(size) +
+                                            " m is below one particle diameter (" + shortNum(d) +
+                                            " m); allowed range [" + shortNum(d) + ", inf)");
   if (s.channel.length <= s.sample.length + d)
     scene.subDict("channel").fail("length", "value " + shortNum(s.channel.length) +
                                                 " must exceed the sample length plus one "

@@ -216,7 +216,7 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   if (c.content == "particles")
     scene.fail("content",
                "'particles' needs no fluid case (run mixflowDem); mixflowPrepare prepares "
-               "content liquid or mixture");
+               "content liquid or mixture (and checks any content with -check)");
   readSample(scene.subDict("sample"), c.sample);
   readChannel(scene.subDict("channel"), c.channel);
   readLiquid(scene.subDict("liquid"), c.liquid, c.air, c.surfaceTension);
@@ -227,8 +227,9 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not
   // rewritten.
   const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
-  c.endTime = control.scalar("endTime", Range::positive());
-  c.writeInterval = control.scalar("writeInterval", Range::positive());
+  const RunTimes times = readRunTimes(control);
+  c.endTime = times.endTime;
+  c.writeInterval = times.writeInterval;
 
   // Cross-entry checks, named by the entry that has to change.
   const Dictionary& ch = scene.subDict("channel");

@@ -1,5 +1,7 @@
 #include "MixtureCase.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -7,18 +9,150 @@
 #include "CouplingProperties.h"
 #include "DemDriver.h"
 #include "Dictionary.h"
+#include "ForceModel.h"
 #include "LiggghtsCommands.h"
 #include "Scene.h"
 #include "SettledSample.h"
+#include "VoidFractionModel.h"
 
 namespace mixflow::cfd {
 
 namespace fs = std::filesystem;
 
-MixtureSetup prepareMixture(LiquidCase& c) {
+namespace {
+
+constexpr double kGravity = 9.81;  // as constant/g (FoamCaseWriter)
+
+std::string num(double v) { return formatNumber(v, 3); }
+
+// The smallest cell edge against the particle diameter (kCellDiametersMin, kCellDiametersWarn).
+void checkCellsAgainstGrains(const LiquidCase& c, MixtureSetup& m) {
+  const double h = c.minCellSize(), d = m.diameter, ratio = h / d;
+  const Dictionary cfd = Dictionary::readFile((fs::path(c.caseDir) / "system/cfdDict").string());
+  const std::string asked =
+      cfd.has("cellSize") ? "" : " (auto: H / 20 = " + num(c.sample.height / 20.0) + " m)";
+  const std::string cells = "cells of " + num(h) + " m (the smallest edge) are " + num(ratio) +
+                            " particle diameters (d = " + num(d) + " m)";
+  if (ratio < kCellDiametersMin * (1 - 1e-9))
+    cfd.fail("cellSize", cells + asked +
+                             ": unresolved coupling averages the grains over each cell and needs "
+                             "cells of at least " +
+                             num(kCellDiametersMin) + " d (" + num(kCellDiametersWarn) +
+                             " d advised); allowed range [" + num(kCellDiametersMin * d) + ", " +
+                             num(c.sample.height / 4.0) + "] m");
+  if (ratio < kCellDiametersWarn * (1 - 1e-9))
+    m.warnings.push_back(cfd.where("cellSize") + ": " + cells + asked +
+                         ": unresolved coupling is meant for cells of at least " +
+                         num(kCellDiametersWarn) +
+                         " d; below that a cell holds few grains, and its void fraction (with the "
+                         "drag laws' bed correlations that use it) jumps as grains cross faces. "
+                         "cellSize >= " +
+                         num(kCellDiametersWarn * d) + " m meets it");
+}
+
+// The coupled step: Courant number estimate at the dam-break front speed, and writeInterval.
+void checkCoupledStep(const LiquidCase& c, const coupling::CouplingProperties& props,
+                      MixtureSetup& m) {
+  const double dx = std::min(c.dx(), c.dy());
+  m.frontSpeed = 2.0 * std::sqrt(kGravity * c.sample.height);
+  m.courant = c.coupledDeltaT * m.frontSpeed / dx;
+  // The largest exchangeEvery whose estimate stays at or below a Courant number co.
+  const auto largest = [&](double co) {
+    return static_cast<long>(std::floor(co * dx / (m.frontSpeed * m.demTimeStep) * (1 + 1e-9)));
+  };
+  const std::string estimate =
+      "gives a CFD step of " + num(c.coupledDeltaT) + " s = " + std::to_string(m.exchangeEvery) +
+      " x DEM step " + num(m.demTimeStep) +
+      " s, whose Courant number estimate dt 2 sqrt(g H) / dx = " + num(m.courant) +
+      " (2 sqrt(g H) = " + num(m.frontSpeed) +
+      " m/s, Ritter's dam-break front speed for H = " + num(c.sample.height) +
+      " m; dx = " + num(dx) + " m)";
+  if (m.courant > kCourantMax) {
+    const long most = largest(kCourantMax);
+    props.dict.fail("exchangeEvery",
+                    "value " + std::to_string(m.exchangeEvery) + " " + estimate + " exceeds " +
+                        num(kCourantMax) + ": the fluid step would outrun its cells; " +
+                        (most >= 1 ? "allowed range [1, " + std::to_string(most) + "]"
+                                   : "even exchangeEvery 1 exceeds it: lower the DEM step or "
+                                     "coarsen the mesh"));
+  }
+  if (m.courant > c.numerics.maxCo)
+    m.warnings.push_back(props.dict.where("exchangeEvery") + ": value " +
+                         std::to_string(m.exchangeEvery) + " " + estimate +
+                         " is above system/cfdDict maxCo " + num(c.numerics.maxCo) +
+                         " (the front alone; air jets run faster); exchangeEvery <= " +
+                         std::to_string(largest(c.numerics.maxCo)) + " keeps it below");
+  if (c.coupledDeltaT > c.writeInterval)
+    props.dict.fail("exchangeEvery",
+                    "value " + std::to_string(m.exchangeEvery) + " gives a CFD step of " +
+                        std::to_string(c.coupledDeltaT) +
+                        " s, longer than controlDict writeInterval; allowed range [1, " +
+                        std::to_string(static_cast<long>(c.writeInterval / m.demTimeStep)) + "]");
+}
+
+// The liquid's law in the coupling's terms (SI, dynamic), as mixflowCoupled reads it back from
+// the transportProperties that writeFoamCase makes of c (Newtonian: no cap).
+coupling::LiquidLaw liquidLaw(const LiquidCase& c) {
+  coupling::LiquidLaw law;
+  law.density = c.liquid.density;
+  law.airDensity = c.air.density;
+  law.airViscosity = c.air.viscosity;
+  if (c.liquid.yieldStressModel()) {
+    law.yieldStress = c.liquid.yieldStress;
+    law.consistency = c.liquid.consistency;
+    law.flowIndex = c.liquid.flowIndex;
+    law.viscosityCap = c.liquid.viscosityCap;
+  } else {
+    law.consistency = c.liquid.viscosity;
+  }
+  return law;
+}
+
+// The sample-independent part of checkMixture for a scene already read.
+void checkMixture(LiquidCase& c, const dem::Scene& scene, MixtureSetup& m) {
+  m.diameter = scene.particles.diameter;
+  m.demTimeStep = scene.timeStepUsed();
+
+  const std::string propsFile = (fs::path(c.caseDir) / "constant" / "couplingProperties").string();
+  if (!fs::exists(propsFile))
+    throw InputError(propsFile +
+                     ": cannot open file: a mixture scene needs its coupling "
+                     "properties (coupling/README.md)");
+  const coupling::CouplingProperties props = coupling::CouplingProperties::read(propsFile);
+  // The models as mixflowCoupled builds them (FoamCoupling): unknown names and wrong Coeffs
+  // entries are found here. mixflowFoam's formulation B with the full viscous stress, as the
+  // case files mixflowPrepare writes select, and the liquid's law as transportProperties gives
+  // it to the drag viscosity closures (dragViscosity auto depends on it).
+  coupling::ForceContext context;
+  context.g = coupling::Vec3(0, -kGravity, 0);
+  context.liquid = liquidLaw(c);
+  for (const auto& name : props.forceModels) coupling::ForceModel::New(name, props.dict, context);
+  coupling::VoidFractionModel::New(props.voidFractionModel, props.dict);
+
+  m.exchangeEvery = props.exchangeEvery;
+  c.coupledDeltaT = m.exchangeEvery * m.demTimeStep;
+  checkCoupledStep(c, props, m);
+  checkCellsAgainstGrains(c, m);
+  m.demScriptPath = props.demScript.front() == '/'
+                        ? props.demScript
+                        : (fs::path(c.caseDir) / props.demScript).string();
+}
+
+}  // namespace
+
+MixtureSetup checkMixture(LiquidCase& c) {
   MixtureSetup m;
   const dem::Scene scene = dem::Scene::read(c.caseDir);
-  m.demTimeStep = scene.timeStepUsed();
+  m.particles = scene.particleCount();
+  m.settledHeight = c.sample.height;
+  checkMixture(c, scene, m);
+  return m;
+}
+
+MixtureSetup prepareMixture(LiquidCase& c) {
+  MixtureSetup m;
+  m.settled = true;
+  const dem::Scene scene = dem::Scene::read(c.caseDir);
 
   const fs::path statePath = fs::path(c.caseDir) / "dem" / "settled.state";
   if (!fs::exists(statePath))
@@ -46,24 +180,7 @@ MixtureSetup prepareMixture(LiquidCase& c) {
                      std::to_string(m.settledHeight) + " outside the channel (0, " +
                      std::to_string(c.channel.height) + ") m");
   c.sample.height = m.settledHeight;
-
-  const std::string propsFile = (fs::path(c.caseDir) / "constant" / "couplingProperties").string();
-  if (!fs::exists(propsFile))
-    throw InputError(propsFile +
-                     ": cannot open file: a mixture scene needs its coupling "
-                     "properties (coupling/README.md)");
-  const coupling::CouplingProperties props = coupling::CouplingProperties::read(propsFile);
-  m.exchangeEvery = props.exchangeEvery;
-  c.coupledDeltaT = m.exchangeEvery * m.demTimeStep;
-  if (c.coupledDeltaT > c.writeInterval)
-    props.dict.fail("exchangeEvery",
-                    "value " + std::to_string(m.exchangeEvery) + " gives a CFD step of " +
-                        std::to_string(c.coupledDeltaT) +
-                        " s, longer than controlDict writeInterval; allowed range [1, " +
-                        std::to_string(static_cast<long>(c.writeInterval / m.demTimeStep)) + "]");
-  m.demScriptPath = props.demScript.front() == '/'
-                        ? props.demScript
-                        : (fs::path(c.caseDir) / props.demScript).string();
+  checkMixture(c, scene, m);
 
   // The settled sample restarted without the gate. ${mixflowCase} is defined by mixflowCoupled
   // (the case directory), so the case can be moved or copied.
@@ -89,10 +206,23 @@ void writeMixtureDemScript(const MixtureSetup& m) {
 }
 
 void describeMixture(const MixtureSetup& m, const LiquidCase& c, std::ostream& os) {
-  os << "[mixflowPrepare] mixture: " << m.particles << " settled particles, liquid up to the "
-     << "settled top y = " << m.settledHeight << " m; CFD step " << c.coupledDeltaT
-     << " s = " << m.exchangeEvery << " x DEM step " << m.demTimeStep << " s; DEM script "
-     << m.demScriptPath << "\n";
+  const double cellDiameters = c.minCellSize() / m.diameter;
+  if (m.settled)
+    os << "[mixflowPrepare] mixture: " << m.particles << " settled particles, liquid up to the "
+       << "settled top y = " << m.settledHeight << " m; ";
+  else
+    os << "[mixflowPrepare] mixture before settling: about " << m.particles
+       << " particles (phi L H W / V_p), liquid up to the nominal sample height " << m.settledHeight
+       << " m; ";
+  os << "CFD step " << c.coupledDeltaT << " s = " << m.exchangeEvery << " x DEM step "
+     << m.demTimeStep << " s, Courant number estimate " << num(m.courant)
+     << " at 2 sqrt(g H) = " << num(m.frontSpeed) << " m/s; cells of " << num(cellDiameters)
+     << " d; DEM script " << m.demScriptPath << "\n";
+  if (!m.settled)
+    os << "[mixflowPrepare] checked without the settled sample; left to mixflowPrepare after "
+          "mixflowDem -settleOnly: the settled height inside the channel, the sample's DEM inputs "
+          "against the case's, and the Courant estimate at the settled height\n";
+  for (const auto& w : m.warnings) os << "[mixflowPrepare] warning: " << w << "\n";
 }
 
 }  // namespace mixflow::cfd

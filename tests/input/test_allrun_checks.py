@@ -10,8 +10,11 @@ logs):
     of the case as it was (no file changed, removed or added);
   - an Allrun with one broken dictionary entry (dry: particles.diameter -0.024 in
     constant/sceneProperties; liquid: cellSize -0.03 in system/cfdDict; mixture:
-    youngModulusFactor 2 in system/demDict) exits non-zero, the message names file, entry, value
-    and allowed range, and again nothing of the case changes;
+    youngModulusFactor 2 in system/demDict, and, checked before any settling, exchangeEvery 0 or
+    an unknown force model in constant/couplingProperties, a NaN liquid viscosity, cells smaller
+    than a grain) exits non-zero, the message names file, entry, value and allowed range, and
+    again nothing of the case changes;
+  - the mixture Allrun shows the check's warnings (W+P-quick's cells of 2.5 d) before it settles;
   - a valid start whose run then fails (a program on PATH that stops with an error: mixflowDem
     for the dry and the mixture case, blockMesh for the liquid one) leaves the previous outputs
     byte for byte in the one previous-run.<date>-<time>/ directory the Allrun names.
@@ -21,32 +24,15 @@ Nothing is simulated (the checks are the programs' check modes): a few seconds.
 
 usage: test_allrun_checks.py REPO_ROOT MIXFLOWDEM MIXFLOWPREPARE WORKDIR"""
 import os
-import re
 import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import inputcase  # noqa: E402
+from inputcase import check, edit, tree  # noqa: E402
+
 root, dem_exe, prepare_exe, work = (os.path.abspath(p) for p in sys.argv[1:5])
-failures = 0
-
-
-def check(ok, what):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}", flush=True)
-    if not ok:
-        failures += 1
-    return ok
-
-
-def tree(case):
-    """{relative path: bytes} of every file (and symlink target) below CASE."""
-    out = {}
-    for d, _dirs, files in os.walk(case):
-        for f in files:
-            p = os.path.join(d, f)
-            with open(p, "rb") as fh:
-                out[os.path.relpath(p, case)] = fh.read()
-    return out
 
 
 def write(path, text):
@@ -56,17 +42,7 @@ def write(path, text):
 
 
 def fresh_copy(name):
-    src, case = os.path.join(root, "cases", name), os.path.join(work, name)
-    if os.path.exists(case):
-        shutil.rmtree(case)
-    os.makedirs(case)
-    shutil.copy2(os.path.join(src, "Allrun"), case)
-    for sub in ("constant", "system"):  # inputs only (a run in cases/ may have left outputs)
-        os.makedirs(os.path.join(case, sub))
-        for f in os.listdir(os.path.join(src, sub)):
-            if os.path.isfile(os.path.join(src, sub, f)):
-                shutil.copy2(os.path.join(src, sub, f), os.path.join(case, sub, f))
-    return case
+    return inputcase.copy_inputs(root, name, os.path.join(work, name))
 
 
 def finished_outputs(case, kind):
@@ -117,15 +93,6 @@ def refused(case, args, fragments, what):
         print(f"     missing fragments {missing}; changed files {changed[:10]}\n{msg}")
 
 
-def edit(case, rel, pattern, repl):
-    p = os.path.join(case, rel)
-    text = open(p).read()
-    new = re.sub(pattern, repl, text, count=1, flags=re.M)
-    assert new != text, f"{rel}: the edit {pattern!r} did not apply"
-    open(p, "w").write(new)
-    return text
-
-
 def moved_aside(case, args, fail_dir, kept_in_dem=()):
     """A valid start that fails after the checks: the previous outputs are in previous-run.*/."""
     before = tree(case)
@@ -152,6 +119,7 @@ def moved_aside(case, args, fail_dir, kept_in_dem=()):
     now = tree(case)
     check(all(now.get(k) == v for k, v in inputs.items()), f"{name}: the case's dictionaries are as they were")
     print(f"     {msg.strip().splitlines()[0] if msg.strip() else ''}")
+    return msg
 
 
 os.makedirs(work, exist_ok=True)
@@ -191,12 +159,33 @@ for name, kind, (rel, pattern, repl), fragments in SCENES:
     original = edit(case, rel, pattern, repl)
     refused(case, ["1"], fragments, f"broken entry in {rel}")
     open(os.path.join(case, rel), "w").write(original)
-    moved_aside(case, ["1"], fail_dir)
+    msg = moved_aside(case, ["1"], fail_dir)
+    if kind == "mixture":
+        # W+P-quick's 0.06 m cells are 2.5 d: the check's warning is shown before the settling.
+        check(msg is not None and "warning: " in msg and "cellSize" in msg and "2.5 particle diameters" in msg,
+              f"{name}: the Allrun shows the check's warning (cells of 2.5 d) before it settles")
+
+# A mixture's liquid, fluid mesh and coupling entries are checked before the settling too
+# (mixflowPrepare -check, without a settled sample): refused, nothing touched.
+case = fresh_copy("W+P-quick")
+finished_outputs(case, "mixture")
+for rel, pattern, repl, fragments in [
+        ("constant/couplingProperties", r"^exchangeEvery +25;", "exchangeEvery 0;",
+         ["constant/couplingProperties", "exchangeEvery", "[1, 1e+09]"]),
+        ("constant/couplingProperties", r"buoyancy viscousForce", "buoyancyy viscousForce",
+         ["constant/couplingProperties", "forceModels", "'buoyancyy'"]),
+        ("constant/sceneProperties", r"viscosity +0\.001;", "viscosity nan;",
+         ["constant/sceneProperties", "liquid.viscosity", "nan", "(0, inf)"]),
+        ("system/cfdDict", r"^cellSize +0\.06;", "cellSize 0.02;",
+         ["system/cfdDict", "cellSize", "allowed range [0.024"])]:
+    original = edit(case, rel, pattern, repl)
+    refused(case, ["1"], fragments + ["nothing was run"], f"{fragments[1]} in {rel}, before settling")
+    open(os.path.join(case, rel), "w").write(original)
 
 # A mixture rerun on its own settled sample: the sample stays in dem/, the rest goes aside.
 case = fresh_copy("W+P-quick")
 finished_outputs(case, "mixture")
 moved_aside(case, ["1", "dem"], fail_dir, kept_in_dem=("dem/settled.state", "dem/settled.restart"))
 
-print("PASS" if failures == 0 else f"FAIL ({failures} failed)")
-sys.exit(1 if failures else 0)
+print("PASS" if inputcase.failures == 0 else f"FAIL ({inputcase.failures} failed)")
+sys.exit(1 if inputcase.failures else 0)
