@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""The drift coefficients a user takes to calibrate the quasi two-phase model: mixflowExtract on
+finished mixture runs, and robust summaries of lambda_u, lambda_w and lambda_p (its density and raw
+conventions, mixture_extract/README.md) over the flowing bins. Also written into the "lambdas"
+entry of results/yield_stress/summary.json when that file exists.
+
+usage: /usr/bin/python3 scripts/mixture_lambdas.py --work runs/reference [--scenes W+P,HB+P,B+P]
+                                                   [--out results/yield_stress/lambdas.json]
+
+For each scene WORK/<scene> (a finished suite run): system/extractDict is written (grid x 0 to 3 m
+in 0.06 m bins, y 0 to 0.72 m in 0.06 m bins, windows of 0.1 s over the run, fluid from OpenFOAM,
+the liquid density from the scene), `mixflowExtract -case DIR -overwrite` runs, and from
+postProcessing/mixture/mixture.h5:
+  - the flowing bins: lambda valid (the extractor's masks) and alpha_s >= 0.1 and |u_s| >= 0.05 m/s
+    (the grains move; where they rest the ratios are ill-conditioned);
+  - median and 10 / 90 % quantiles of each lambda over those bins and all windows, with the counts;
+  - lambda_u and lambda_w also as the weighted least-squares slope of u_f on u_s over the same bins
+    (weights alpha_s (1 - alpha_s) times the bin's particle samples): a ratio of sums, which small
+    |u_s| cannot blow up.
+Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LABEL = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
+
+
+def extract(run_dir, build):
+    with open(os.path.join(run_dir, "system", "extractDict"), "w") as f:
+        f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
+                "// written by scripts/mixture_lambdas.py\n"
+                "grid { x (0 3 50); y (0 0.72 12); }\n"
+                "windows { start 0; width 0.1; }\n"
+                "fluid { source openfoam; }\n")
+    r = subprocess.run([os.path.join(build, "bin", "mixflowExtract"), "-case", run_dir,
+                        "-overwrite"], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"mixflowExtract failed on {run_dir}:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
+
+
+def quantiles(v):
+    if v.size == 0:
+        return {"median": None, "p10": None, "p90": None, "bins": 0}
+    return {"median": float(np.median(v)), "p10": float(np.quantile(v, 0.1)),
+            "p90": float(np.quantile(v, 0.9)), "bins": int(v.size)}
+
+
+def summarise(h5):
+    with h5py.File(h5, "r") as h:
+        f = {k: h["fields/" + k][()] for k in h["fields"].keys()}
+        valid = {k[len("valid_"):]: h["masks/" + k][()].astype(bool) for k in h["masks"].keys()
+                 if k.startswith("valid_")}
+        samples = h["counts/particle_samples"][()] if "counts/particle_samples" in h else None
+        windows = int(h["windows/t0"].shape[0])
+    a, us, ws = f["alpha_s"], f["u_s"], f["w_s"]
+    speed = np.sqrt(np.nan_to_num(us) ** 2 + np.nan_to_num(ws) ** 2)
+    flowing = (np.nan_to_num(a) >= 0.1) & (speed >= 0.05)
+    out = {"windows": windows, "flowing_bins": int(flowing.sum())}
+    for lam in ("lambda_u", "lambda_w", "lambda_p_density", "lambda_p_raw"):
+        if lam not in f:
+            continue
+        m = flowing & valid.get(lam, np.isfinite(f[lam])) & np.isfinite(f[lam])
+        out[lam] = quantiles(f[lam][m])
+        out[lam]["masked_in_flowing"] = int((flowing & ~m).sum())
+    w = np.nan_to_num(a * (1 - a)) * (np.nan_to_num(samples) if samples is not None else 1.0)
+    for lam, fs, ff in (("lambda_u", us, f["u_f"]), ("lambda_w", ws, f["w_f"])):
+        m = flowing & np.isfinite(fs) & np.isfinite(ff)
+        den = float(np.sum(w[m] * fs[m] ** 2))
+        out[lam + "_wls_slope"] = float(np.sum(w[m] * ff[m] * fs[m]) / den) if den > 0 else None
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--scenes", default="W+P,HB+P,B+P")
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress", "lambdas.json"))
+    a = ap.parse_args()
+    build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
+    res = {"command": "/usr/bin/python3 scripts/mixture_lambdas.py --work runs/reference",
+           "flowing_rule": "lambda valid, alpha_s >= 0.1, |u_s| >= 0.05 m/s",
+           "grid": "x 0-3 m / 0.06 m, y 0-0.72 m / 0.06 m, windows 0.1 s", "scenes": {}}
+    for scene in a.scenes.split(","):
+        d = os.path.join(os.path.abspath(a.work), scene)
+        extract(d, build)
+        res["scenes"][LABEL.get(scene, scene)] = summarise(
+            os.path.join(d, "postProcessing", "mixture", "mixture.h5"))
+        print(scene, json.dumps(res["scenes"][LABEL.get(scene, scene)]), flush=True)
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
+    with open(a.out, "w") as f:
+        json.dump(res, f, indent=1, sort_keys=True)
+    summary = os.path.join(os.path.dirname(os.path.abspath(a.out)), "summary.json")
+    if os.path.exists(summary):
+        with open(summary) as f:
+            s = json.load(f)
+        s["lambdas"] = res["scenes"]
+        s["lambdas_command"] = res["command"]
+        with open(summary, "w") as f:
+            json.dump(s, f, indent=1, sort_keys=True)
+    print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()
