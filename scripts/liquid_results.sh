@@ -23,12 +23,12 @@ if [ -z "${MIXFLOW_NO_BUILD:-}" ]; then bash "$root/scripts/build.sh"; fi
 export PATH="${MIXFLOW_BUILD:-$root/build}/bin:$PATH"
 mkdir -p "$work"
 
-# prepare RUN CASE: fresh copy of cases/CASE as WORK/RUN, 2-D, Allrun pointing at this checkout.
+# The copies' Allrun scripts source this checkout's run functions.
+export MIXFLOW_ROOT="$root"
+# prepare RUN CASE: fresh copy of cases/CASE as WORK/RUN, 2-D.
 prepare() {
   local run=$1 case=$2
   rm -rf "${work:?}/$run" && cp -r "$root/cases/$case" "$work/$run"
-  sed -i "s|^\. \.\./\.\./scripts/LiquidRunFunctions|. $root/scripts/LiquidRunFunctions|" \
-    "$work/$run/Allrun"
   sed -i -E 's/^dimensions +3;/dimensions  2;/' "$work/$run/system/cfdDict"
 }
 # set FILE KEY VALUE: replace the first "KEY value;" in FILE (indented entries too).

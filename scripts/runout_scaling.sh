@@ -9,11 +9,10 @@ work=${WORK:-/tmp/mixflow-runout}
 bash "$root/scripts/build.sh"
 export PATH="${MIXFLOW_BUILD:-$root/build}/bin:$PATH"
 mkdir -p "$work"
+export MIXFLOW_ROOT="$root"  # the copies' Allrun scripts source this checkout's RunFunctions
 for c in P-I-I P-I-II P-I-III P-I-IV P-I-V; do
   if [ ! -f "$work/$c/postProcessing/dem/summary.json" ]; then
     rm -rf "${work:?}/$c" && cp -r "$root/cases/$c" "$work/$c"
-    # The copy's Allrun finds RunFunctions relative to the repository.
-    sed -i "s|\.\./\.\./scripts/RunFunctions|$root/scripts/RunFunctions|" "$work/$c/Allrun"
     (cd "$work/$c" && ./Allrun "$ranks" > log.Allrun 2>&1) || { echo "scene $c failed: see $work/$c/log.Allrun" >&2; exit 1; }
   fi
   echo "$c done"
