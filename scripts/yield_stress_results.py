@@ -26,6 +26,11 @@ usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out
    and the mean share of grains whose held drag the dragRelaxationLimit bounded (exchange.csv).
    variants.csv and summary.json "paper_faithful". A variant whose log ends with "End" is not
    run again (delete WORK/variants/<scene>-<variant> to redo it).
+3. With --packing F1,F2,... (e.g. 0.56,0.58): W+P and HB+P at the reference tier with
+   sample.solidFraction F (`suite.py --tier reference --set sceneProperties.sample.solidFraction=F`,
+   WORK/packing-F), against the reference-tier runs in --reference-work (solidFraction 0.6056):
+   the settled sample fraction, fronts at 3 s and the grains' released energy; summary.json
+   "packing", packing.csv.
 """
 
 import argparse
@@ -196,6 +201,33 @@ def mixtures(work):
     return out
 
 
+def settled_fraction(run_dir):
+    with open(os.path.join(run_dir, "dem", "settled.state")) as f:
+        return float(re.search(r"sampleFraction\s+([0-9.eE+-]+);", f.read()).group(1))
+
+
+def packing(work, fractions, reference_work):
+    out = {}
+    runs = {"0.6056": reference_work}
+    for frac in fractions:
+        d = os.path.join(work, f"packing-{frac}")
+        r = run([sys.executable, os.path.join(ROOT, "scripts/suite.py"), "--tier", "reference",
+                 "--scenes", "W+P,HB+P", "--work", d, "--set",
+                 f"sceneProperties.sample.solidFraction={frac}"])
+        if r.returncode != 0:
+            sys.exit("suite.py failed")
+        runs[frac] = d
+    for frac, d in runs.items():
+        for scene, label in (("W+P", "W&P"), ("HB+P", "HB&P")):
+            rd = os.path.join(d, scene)
+            if not os.path.isdir(rd):
+                continue
+            obs = observables(rd)
+            obs["settled_sample_fraction"] = settled_fraction(rd)
+            out.setdefault(label, {})[frac] = obs
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -203,6 +235,9 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress"))
     ap.add_argument("--skip-grains", action="store_true")
     ap.add_argument("--skip-mixtures", action="store_true")
+    ap.add_argument("--packing", help="comma-separated target solid fractions (stage 3)")
+    ap.add_argument("--reference-work", default=os.path.join(ROOT, "runs", "reference"),
+                    help="the reference-tier suite run at the cases' own solidFraction")
     a = ap.parse_args()
     work, out = os.path.abspath(a.work), os.path.abspath(a.out)
     build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
@@ -231,6 +266,16 @@ def main():
             for scene, runs in summary["paper_faithful"]["runs"].items():
                 for name, obs in runs.items():
                     w.writerow([scene, name] + [obs.get(k, "") for k in keys])
+    if a.packing:
+        summary["packing"] = packing(work, a.packing.split(","), os.path.abspath(a.reference_work))
+        with open(os.path.join(out, "packing.csv"), "w", newline="") as f:
+            w = csv.writer(f)
+            keys = ["settled_sample_fraction", "granular_front_m", "grain_pe_released_J",
+                    "grain_pe_initial_J", "liquid_front_m", "back_wall_surface_1.0s_H"]
+            w.writerow(["scene", "target_solid_fraction"] + keys)
+            for scene, runs in summary["packing"].items():
+                for frac, obs in sorted(runs.items()):
+                    w.writerow([scene, frac] + [obs.get(k, "") for k in keys])
     with open(path, "w") as f:
         json.dump(summary, f, indent=1, sort_keys=True)
     print(f"wrote {path}")
