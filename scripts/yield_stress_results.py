@@ -26,11 +26,13 @@ usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out
    and the mean share of grains whose held drag the dragRelaxationLimit bounded (exchange.csv).
    variants.csv and summary.json "paper_faithful". A variant whose log ends with "End" is not
    run again (delete WORK/variants/<scene>-<variant> to redo it).
-3. With --packing F1,F2,... (e.g. 0.56,0.58): W+P and HB+P at the reference tier with
-   sample.solidFraction F (`suite.py --tier reference --set sceneProperties.sample.solidFraction=F`,
-   WORK/packing-F), against the reference-tier runs in --reference-work (solidFraction 0.6056):
-   the settled sample fraction, fronts at 3 s and the grains' released energy; summary.json
-   "packing", packing.csv.
+3. With --packing F:MU,... (e.g. 0.58:0.3,0.56:0.7): W+P and HB+P at the reference tier with
+   sample.solidFraction F and the settling friction settle.friction MU (`suite.py --tier
+   reference --set sceneProperties.sample.solidFraction=F --set demDict.settle.friction=MU`,
+   WORK/packing-F-MU): the target fraction only sets the grain count, the settling friction sets
+   the packing (0.1, the default, settles to about 0.61). Against the reference-tier runs in
+   --reference-work: the settled sample fraction, fronts at 3 s and the grains' released energy;
+   summary.json "packing", packing.csv.
 """
 
 import argparse
@@ -208,15 +210,17 @@ def settled_fraction(run_dir):
 
 def packing(work, fractions, reference_work):
     out = {}
-    runs = {"0.6056": reference_work}
-    for frac in fractions:
-        d = os.path.join(work, f"packing-{frac}")
+    runs = {"0.6056:0.1": reference_work}
+    for item in fractions:
+        frac, mu = item.split(":")
+        d = os.path.join(work, f"packing-{frac}-{mu}")
         r = run([sys.executable, os.path.join(ROOT, "scripts/suite.py"), "--tier", "reference",
                  "--scenes", "W+P,HB+P", "--work", d, "--set",
-                 f"sceneProperties.sample.solidFraction={frac}"])
+                 f"sceneProperties.sample.solidFraction={frac}", "--set",
+                 f"demDict.settle.friction={mu}"])
         if r.returncode != 0:
             sys.exit("suite.py failed")
-        runs[frac] = d
+        runs[item] = d
     for frac, d in runs.items():
         for scene, label in (("W+P", "W&P"), ("HB+P", "HB&P")):
             rd = os.path.join(d, scene)
@@ -235,7 +239,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress"))
     ap.add_argument("--skip-grains", action="store_true")
     ap.add_argument("--skip-mixtures", action="store_true")
-    ap.add_argument("--packing", help="comma-separated target solid fractions (stage 3)")
+    ap.add_argument("--packing", help="comma-separated FRACTION:SETTLE_FRICTION (stage 3)")
     ap.add_argument("--reference-work", default=os.path.join(ROOT, "runs", "reference"),
                     help="the reference-tier suite run at the cases' own solidFraction")
     a = ap.parse_args()
@@ -272,7 +276,7 @@ def main():
             w = csv.writer(f)
             keys = ["settled_sample_fraction", "granular_front_m", "grain_pe_released_J",
                     "grain_pe_initial_J", "liquid_front_m", "back_wall_surface_1.0s_H"]
-            w.writerow(["scene", "target_solid_fraction"] + keys)
+            w.writerow(["scene", "target_solid_fraction:settle_friction"] + keys)
             for scene, runs in summary["packing"].items():
                 for frac, obs in sorted(runs.items()):
                     w.writerow([scene, frac] + [obs.get(k, "") for k in keys])
