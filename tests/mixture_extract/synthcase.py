@@ -4,8 +4,24 @@ LIGGGHTS' dump custom/vtk layout with a ParaView .series index, postProcessing/d
 once finished) and OpenFOAM ASCII time directories standing in for the coupled solver."""
 import json
 import os
+import subprocess
 
 import numpy as np
+
+
+def checker(failures):
+    """check(cond, what): prints ok/FAIL and collects the failed checks in FAILURES."""
+    def check(cond, what):
+        print(("ok   " if cond else "FAIL ") + what)
+        if not cond:
+            failures.append(what)
+    return check
+
+
+def run_extract(exe, case, *extra):
+    """mixflowExtract -case CASE EXTRA...: (exit status, stdout + stderr)."""
+    r = subprocess.run([exe, "-case", case, *extra], capture_output=True, text=True)
+    return r.returncode, r.stdout + r.stderr
 
 
 def write(path, text):

@@ -29,12 +29,7 @@ import synthcase as sc  # noqa: E402
 exe, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
 failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
+check = sc.checker(failures)
 
 
 def run(case, *extra, fsize=None):

@@ -7,7 +7,6 @@ liquidDensity is refused before anything is written when the density convention 
 
 usage: test_extract_liquid_density.py MIXFLOWEXTRACT WORKDIR"""
 import os
-import subprocess
 import sys
 
 import h5py
@@ -20,17 +19,11 @@ import synthcase as sc  # noqa: E402
 exe, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
 failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
+check = sc.checker(failures)
 
 
 def run(case, *extra):
-    r = subprocess.run([exe, "-case", case, *extra], capture_output=True, text=True)
-    return r.returncode, r.stdout + r.stderr
+    return sc.run_extract(exe, case, *extra)
 
 
 times = [round(0.01 * k, 10) for k in range(10)]

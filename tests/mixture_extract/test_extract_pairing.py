@@ -16,7 +16,6 @@ window boundary at 0.05 s differently: by time alone the first window [0, 0.05) 
 usage: test_extract_pairing.py MIXFLOWEXTRACT WORKDIR"""
 import math
 import os
-import subprocess
 import sys
 
 import h5py
@@ -29,17 +28,11 @@ import synthcase as sc  # noqa: E402
 exe, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
 failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
+check = sc.checker(failures)
 
 
 def run(case, *extra):
-    r = subprocess.run([exe, "-case", case, *extra], capture_output=True, text=True)
-    return r.returncode, r.stdout + r.stderr
+    return sc.run_extract(exe, case, *extra)
 
 
 snaps = [round(0.00995 * k, 10) for k in range(11)]
