@@ -96,6 +96,16 @@ SettleReport DemDriver::settle() {
          << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
          << "), sample solid fraction " << fmt(r.sampleFraction, 4) << " (target "
          << s.sample.solidFraction << "), bulk fraction " << fmt(r.bulkFraction, 4) << std::endl;
+  // The target fraction only sets the grain count; the settling friction sets the packing.
+  const double off = r.sampleFraction / s.sample.solidFraction - 1.0;
+  if (rank_ == 0 && std::abs(off) > kSettledFractionTolerance)
+    out_ << "[dem] warning: the settled sample solid fraction " << fmt(r.sampleFraction, 4)
+         << " is " << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
+         << " sample.solidFraction " << s.sample.solidFraction
+         << " (constant/sceneProperties): the target sets the grain count only; demDict "
+            "settle.friction sets the packing (looser with more friction), softened contacts "
+            "(youngModulusFactor) compact it"
+         << std::endl;
   return r;
 }
 

@@ -22,6 +22,9 @@ SettleReport readSettledDict(const Dictionary& d);
 
 class DemDriver {
  public:
+  // settle() warns when the settled sample's solid fraction is this far (relative) from the
+  // target (docs/parameters.md, sample.solidFraction).
+  static constexpr double kSettledFractionTolerance = 0.03;
   DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out);
   ~DemDriver();
 

@@ -166,6 +166,15 @@ def main():
     dem = rows(os.path.join(pp, "dem", "timeSeries.csv"))
     settled = suite.read_dict(os.path.join(case, "dem", "settled.state"))["settled"]
     n0 = int(settled["particles"])
+    # The settle warns when the sample's fraction is more than 3 % off the target.
+    target = float(suite.read_dict(os.path.join(case, "constant", "sceneProperties"))["sample"]
+                   ["solidFraction"])
+    off = abs(float(settled["sampleFraction"]) / target - 1)
+    with open(os.path.join(case, "log.mixflowDem")) as f:
+        warned = "[dem] warning: the settled sample solid fraction" in f.read()
+    print(f"settled fraction {float(settled['sampleFraction']):.4f} against target {target}: "
+          f"{100 * off:.1f} % off, warned: {warned}")
+    ok &= warned == (off > 0.03)
     last = dem[-1]
     total = (int(last["particles"]) + int(last["deleted_outlet"]) + int(last["deleted_top"]) +
              int(last["lost"]))
