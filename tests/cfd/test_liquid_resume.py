@@ -122,7 +122,7 @@ killed = kill_solver(b)
 out = proc.communicate()[0]
 check(killed >= 1 and proc.returncode != 0, f"run B killed after its first write ({killed} "
       f"mixflowFoam process(es), exit {proc.returncode})")
-hint = re.search(r"to continue from the last field write \(t = (\S+) s\).*resumeLiquidCase (\d+)",
+hint = re.search(r"to continue from the last write \(t = (\S+) s\).*resumeLiquidCase (\d+)",
                  out)
 check(hint is not None and int(hint.group(2)) == ranks,
       "the failed run prints the resume command: " + (hint.group(0) if hint else out[-1500:]))

@@ -17,7 +17,9 @@ logs):
   - the mixture Allrun shows the check's warnings (W+P-quick's cells of 2.5 d) before it settles;
   - a valid start whose run then fails (a program on PATH that stops with an error: mixflowDem
     for the dry and the mixture case, blockMesh for the liquid one) leaves the previous outputs
-    byte for byte in the one previous-run.<date>-<time>/ directory the Allrun names.
+    byte for byte in the one previous-run.<date>-<time>/ directory the Allrun names; the dry
+    Allrun also says that mixflowDem failed, with its exit status, and how to resume from the
+    snapshot it wrote (the stand-in writes dem/resume.state at t = 0.25 s);
   - the mixture case given its own dem/ as SETTLED_DIR keeps the settled sample in dem/ (it is the
     new run's input) and moves the rest of the previous outputs aside.
 Nothing is simulated (the checks are the programs' check modes): a few seconds.
@@ -134,7 +136,8 @@ os.symlink(dem_exe, os.path.join(bindir, "mixflowDem"))
 os.symlink(prepare_exe, os.path.join(bindir, "mixflowPrepare"))
 write(os.path.join(fail_dir, "mixflowDem"),
       "#!/usr/bin/env bash\nfor a in \"$@\"; do [ \"$a\" = -check ] && exec "
-      f"'{dem_exe}' \"$@\"; done\necho 'mixflowDem: run stopped: simulated failure' >&2\nexit 1\n")
+      f"'{dem_exe}' \"$@\"; done\nmkdir -p dem && echo 'time 0.25;' > dem/resume.state\n"
+      "echo 'mixflowDem: run stopped: simulated failure' >&2\nexit 1\n")
 write(os.path.join(fail_dir, "blockMesh"), "#!/usr/bin/env bash\necho 'simulated failure' >&2\nexit 1\n")
 for f in ("mixflowDem", "blockMesh"):
     os.chmod(os.path.join(fail_dir, f), 0o755)
@@ -160,6 +163,11 @@ for name, kind, (rel, pattern, repl), fragments in SCENES:
     refused(case, ["1"], fragments, f"broken entry in {rel}")
     open(os.path.join(case, rel), "w").write(original)
     msg = moved_aside(case, ["1"], fail_dir)
+    if kind == "particles":
+        # A failed dry run says so, and how to resume from its last snapshot (dem/resume.state).
+        check(msg is not None and "mixflowDem failed with exit status 1" in msg
+              and "to continue from the last write (t = 0.25 s)" in msg
+              and "resumeDemCase 1" in msg, f"{name}: the failed run says so and how to resume")
     if kind == "mixture":
         # W+P-quick's 0.06 m cells are 2.5 d: the check's warning is shown before the settling.
         check(msg is not None and "warning: " in msg and "cellSize" in msg and "2.5 particle diameters" in msg,
