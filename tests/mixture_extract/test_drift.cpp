@@ -5,7 +5,7 @@
 //     material above the bin;
 //   issue 5 test 4: bins with u_s = 0 (and without particles, with p_s = 0) are masked and counted,
 //     with floating-point traps on: nothing divides by zero;
-//   issue 23: u_f masked where the bin holds little liquid, p_s masked without particle samples;
+//   u_f masked where the bin holds little liquid, p_s masked without particle samples;
 //   streaming stress and the Eq. 9 residual on fields with known answers.
 #include <fenv.h>
 #include <gtest/gtest.h>
@@ -260,7 +260,7 @@ TEST(Drift, ZeroVelocityBinsAreMaskedAndCounted) {
   EXPECT_EQ(maskedP, 4);
 }
 
-// Issue 23: u_f, w_f, p_f are masked (little_liquid) where the liquid share of the bin's fluid
+// u_f, w_f, p_f are masked (little_liquid) where the liquid share of the bin's fluid
 // volume is below thresholds.minLiquidShare (default 0.01): a bin whose only "liquid" is a VOF
 // interface's smeared tail (alpha_l = 5e-8) moving with the air (7.9 m/s) gives no u_f; a bin at
 // the threshold keeps it. p_s needs thresholds.minParticleSamples samples (bins with one sample

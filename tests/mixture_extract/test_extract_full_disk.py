@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""mixflowExtract on a full disk (issue 23, the extractor's quiet errors): a failed HDF5 write or flush
+"""mixflowExtract on a full disk: a failed HDF5 write or flush
 stops it with exit status 1 and a message naming the file and the system's reason, the previous file
 intact and no temporary file left; before the fix it then segfaulted in HDF5's exit handler (exit
 139) after a failed flush.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""mixflowExtract takes the liquid's density from the case (issue 23, the extractor's quiet errors):
+"""mixflowExtract takes the liquid's density from the case:
 without liquidDensity in extractDict, lambda_p_density = (p_f / rho_f) / (p_s / rho_s) uses
 constant/sceneProperties liquid.density (1260 kg/m3 here, a glycerol-like liquid), not 1000; an explicit
 liquidDensity wins, with a warning naming both values; a scene without a liquid and without

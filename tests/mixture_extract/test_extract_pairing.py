@@ -1,6 +1,5 @@
 #!/usr/bin/env python3
-"""mixflowExtract pairs particle snapshots with solved fluid times (issue 23, the extractor's quiet
-errors): the t = 0 fluid write (the unsolved initial state, p = -rho g y) is never averaged, and each
+"""mixflowExtract pairs particle snapshots with solved fluid times: the t = 0 fluid write (the unsolved initial state, p = -rho g y) is never averaged, and each
 solved fluid time goes with its nearest snapshot within pairTolerance, so a window averages both
 phases at the same instants even when the writes drift apart. Also u_f masked where the bin holds
 almost no liquid and p_s masked in empty bins.
