@@ -1,8 +1,13 @@
 #include "CollapseRecorder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "Dictionary.h"
 
@@ -172,10 +177,36 @@ void CollapseRecorder::finish(CollapseReport& rep) {
   rep.runout = rep.front - s.sample.length;
 }
 
+double CollapseRecorder::finalFrontMax(double endTime) const {
+  // From the time series on disk (complete across resumes): the largest granular front over the
+  // last arrestWindow s. A creeping deposit's cluster front can drop by a few d within one sample
+  // when its tip detaches; the deposit reached the largest value.
+  std::ifstream in(fs::path(outDir_) / "timeSeries.csv");
+  std::string line;
+  if (!std::getline(in, line)) return std::nan("");
+  std::vector<std::string> head;
+  for (std::stringstream h(line); std::getline(h, line, ',');) head.push_back(line);
+  const auto col = [&](const std::string& name) {
+    return static_cast<long>(std::find(head.begin(), head.end(), name) - head.begin());
+  };
+  const long it = col("time_s"), iff = col("front_x_m");
+  double best = std::nan("");
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    for (std::stringstream r(line); std::getline(r, line, ',');) cells.push_back(line);
+    if (static_cast<long>(cells.size()) <= std::max(it, iff)) continue;
+    const double t = std::stod(cells[it]), x = std::stod(cells[iff]);
+    if (t >= endTime - scene_.dem.arrestWindow - 1e-9 && !(x <= best)) best = x;
+  }
+  return best;
+}
+
 void CollapseRecorder::writeSummary(const SettleReport& st, const CollapseReport& c,
                                     const std::string& extraJson) const {
   if (rank_ != 0) return;
   const Scene& s = scene_;
+  double frontFinal = finalFrontMax(c.endTime);
+  if (!std::isfinite(frontFinal)) frontFinal = c.front;
   int ranks = 1;
   MPI_Comm_size(comm_, &ranks);
   std::ofstream f(fs::path(outDir_) / "summary.json");
@@ -206,6 +237,9 @@ void CollapseRecorder::writeSummary(const SettleReport& st, const CollapseReport
     << "  \"front_x_m\": " << fmt(c.front) << ",\n"
     << "  \"runout_m\": " << fmt(c.runout) << ",\n"
     << "  \"normalised_runout\": " << fmt(c.runout / s.sample.length) << ",\n"
+    << "  \"runout_final_m\": " << fmt(frontFinal - s.sample.length) << ",\n"
+    << "  \"runout_final_rule\": \"the largest granular front over the last arrestWindow ("
+    << fmt(s.dem.arrestWindow) << " s) minus L\",\n"
     << "  \"front_thickness_x_m\": " << fmt(c.frontThickness) << ",\n"
     << "  \"runout_thickness_m\": " << fmt(c.frontThickness - s.sample.length) << ",\n"
     << "  \"particles_remaining\": " << c.remaining << ",\n"

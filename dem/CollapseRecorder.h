@@ -63,6 +63,8 @@ class CollapseRecorder {
   void writeSummary(const SettleReport& st, const CollapseReport& c,
                     const std::string& extraJson = "") const;
   const std::string& outputDir() const { return outDir_; }
+  // The largest granular front in timeSeries.csv over [endTime - arrestWindow, endTime].
+  double finalFrontMax(double endTime) const;
 
  private:
   const Scene& scene_;

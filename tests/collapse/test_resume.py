@@ -3,11 +3,13 @@
 
 Checks (exact, not statistical): the resumed time series joins the first part without a gap or a
 duplicate (times strictly increasing, steps of sampleInterval within 1 %), it reaches the new endTime,
-and particles are conserved (remaining + deleted + lost = settled count). And the resumed run is the
+and particles are conserved (remaining + deleted + lost = settled count); summary.json's
+runout_final_m is the largest granular front over the last arrestWindow of the whole series minus L.
+And the resumed run is the
 uninterrupted one: every row equal to 1e-9 relative (LIGGGHTS reads its restart bit for bit, and the
 uninterrupted run sets up again after each restart write, as the resumed one does after reading it).
-Until session 12 the uninterrupted run went on after a write on stale neighbour lists; this check
-fails then (LiggghtsSession::writeRestart).
+Without a set-up after each restart write the uninterrupted run would go on on stale neighbour lists
+and this check would fail (LiggghtsSession::writeRestart).
 
 usage: test_resume.py MIXFLOWDEM WORKDIR"""
 import csv
@@ -69,6 +71,15 @@ if abs(times[-1] - 0.45) > 1e-3:
 total = summary["particles_remaining"] + summary["deleted_outlet"] + summary["deleted_top"] + summary["lost"]
 if total != summary["settled"]["particles"]:
     failures.append(f"particles not conserved: {total} != {summary['settled']['particles']}")
+# The final runout is the largest front over the last arrestWindow (default 0.25 s) of the whole
+# series, the resumed part and the first part together: robust to the tip detaching at the end.
+L = float(re.search(r"sample\s*\{[^}]*\blength\s+([0-9.eE+-]+);",
+                    open(os.path.join(case, "constant", "sceneProperties")).read()).group(1))
+expect = max(float(r["front_x_m"]) for r in rows if float(r["time_s"]) >= times[-1] - 0.25 - 1e-9) - L
+if abs(summary["runout_final_m"] - expect) > 1e-9 or summary["runout_final_m"] < summary["runout_m"] - 1e-12:
+    failures.append(f"runout_final_m {summary['runout_final_m']} is not the largest front of the last "
+                    f"0.25 s minus L ({expect}), or below runout_m {summary['runout_m']}")
+print(f"final runout {summary['runout_final_m']:.6g} m (last sample's {summary['runout_m']:.6g} m)")
 ref = list(csv.DictReader(open(os.path.join(whole, "postProcessing", "dem", "timeSeries.csv"))))
 worst = 0.0
 for a, b in zip(ref, rows):
