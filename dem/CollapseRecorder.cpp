@@ -177,26 +177,34 @@ void CollapseRecorder::finish(CollapseReport& rep) {
   rep.runout = rep.front - s.sample.length;
 }
 
-double CollapseRecorder::finalFrontMax(double endTime) const {
+double CollapseRecorder::finalFrontMax(double endTime, double fallback) const {
   // From the time series on disk (complete across resumes): the largest granular front over the
   // last arrestWindow s. A creeping deposit's cluster front can drop by a few d within one sample
-  // when its tip detaches; the deposit reached the largest value.
+  // when its tip detaches; the deposit reached the largest value. (No NaN is compared: OpenFOAM's
+  // solvers trap floating-point exceptions, and an ordered comparison with NaN raises one.)
   std::ifstream in(fs::path(outDir_) / "timeSeries.csv");
   std::string line;
-  if (!std::getline(in, line)) return std::nan("");
+  if (!std::getline(in, line)) return fallback;
   std::vector<std::string> head;
   for (std::stringstream h(line); std::getline(h, line, ',');) head.push_back(line);
   const auto col = [&](const std::string& name) {
     return static_cast<long>(std::find(head.begin(), head.end(), name) - head.begin());
   };
   const long it = col("time_s"), iff = col("front_x_m");
-  double best = std::nan("");
+  bool found = false;
+  double best = fallback;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
     for (std::stringstream r(line); std::getline(r, line, ',');) cells.push_back(line);
-    if (static_cast<long>(cells.size()) <= std::max(it, iff)) continue;
+    if (static_cast<long>(cells.size()) <= std::max(it, iff) || cells[it].empty() ||
+        cells[iff].empty())
+      continue;
     const double t = std::stod(cells[it]), x = std::stod(cells[iff]);
-    if (t >= endTime - scene_.dem.arrestWindow - 1e-9 && !(x <= best)) best = x;
+    if (!std::isfinite(t) || !std::isfinite(x)) continue;
+    if (t >= endTime - scene_.dem.arrestWindow - 1e-9 && (!found || x > best)) {
+      best = x;
+      found = true;
+    }
   }
   return best;
 }
@@ -205,8 +213,7 @@ void CollapseRecorder::writeSummary(const SettleReport& st, const CollapseReport
                                     const std::string& extraJson) const {
   if (rank_ != 0) return;
   const Scene& s = scene_;
-  double frontFinal = finalFrontMax(c.endTime);
-  if (!std::isfinite(frontFinal)) frontFinal = c.front;
+  const double frontFinal = finalFrontMax(c.endTime, c.front);
   int ranks = 1;
   MPI_Comm_size(comm_, &ranks);
   std::ofstream f(fs::path(outDir_) / "summary.json");

@@ -63,8 +63,9 @@ class CollapseRecorder {
   void writeSummary(const SettleReport& st, const CollapseReport& c,
                     const std::string& extraJson = "") const;
   const std::string& outputDir() const { return outDir_; }
-  // The largest granular front in timeSeries.csv over [endTime - arrestWindow, endTime].
-  double finalFrontMax(double endTime) const;
+  // The largest granular front in timeSeries.csv over [endTime - arrestWindow, endTime]
+  // (fallback when the series has no row there).
+  double finalFrontMax(double endTime, double fallback) const;
 
  private:
   const Scene& scene_;
