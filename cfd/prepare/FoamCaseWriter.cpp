@@ -139,7 +139,7 @@ std::string controlDict(const LiquidCase& c) {
   const CfdNumerics& m = c.numerics;
   const bool coupled = c.coupledDeltaT > 0;
   std::ostringstream s;
-  s << "application     " << (coupled ? "mixflowCoupled" : "mixflowFoam") << ";\n"
+  s << "application     " << solverName(c) << ";\n"
     << "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n";
   if (coupled)
     s << "deltaT          " << num(c.coupledDeltaT)
@@ -160,7 +160,7 @@ std::string controlDict(const LiquidCase& c) {
     << "        executeControl  timeStep;\n        executeInterval 1;\n"
     << "        writeControl    writeTime;   // h(x) profiles at write times\n"
     << "        alpha           alpha." << kLiquidPhase << ";\n"
-    << "        rhoLiquid       " << num(c.liquid.density) << ";\n"
+    << "        rhoLiquid       " << num(c.phaseDensity()) << ";\n"
     << "        outletPatch     outlet;\n        topPatch        atmosphere;\n"
     << "        frontThreshold  " << num(c.observables.frontThreshold) << ";\n"
     << "        sectionX        " << num(c.observables.sectionX) << ";   // < 0: none\n"
@@ -216,6 +216,47 @@ std::string fvSolution(const LiquidCase& c) {
   return s.str();
 }
 
+// The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
+// (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
+std::string bulkTransport(const LiquidCase& c) {
+  const BulkModel& b = c.bulk;
+  const Rheology& r = c.liquid;
+  const bool yield = r.yieldStressModel();
+  std::ostringstream s;
+  s << "// Bulk model (constant/bulkProperties): alpha_s " << num(b.solidFraction) << ", rho_s "
+    << num(b.solidDensity) << " kg/m3, drifts from " << b.driftSource << ";\n"
+    << "// solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
+    << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation)
+    << " s, yield pressure " << b.yieldPressure << ".\n"
+    << "phases (" << kLiquidPhase << " " << kAirPhase << ");   // " << kLiquidPhase
+    << " is the mixture\n\n"
+    << kLiquidPhase << "\n{\n    transportModel  bulkMixture;\n    bulkMixtureCoeffs\n    {\n"
+    << "        solidFraction       " << num(b.solidFraction) << ";\n"
+    << "        lambdaU             " << num(b.lambdaU) << ";\n"
+    << "        lambdaW             " << num(b.lambdaW) << ";\n"
+    << "        lambdaP             " << num(b.lambdaP) << ";\n"
+    << "        solidViscosity      " << num(b.solidViscosity) << ";\n"
+    << "        tanPhi              " << num(b.tanPhi) << ";\n"
+    << "        cohesion            " << num(b.cohesion / b.solidDensity) << ";   // m2/s2\n"
+    << "        regularisation      " << num(b.regularisation) << ";\n"
+    << "        yieldPressureFactor " << num(b.yieldPressureFactor(r.density)) << ";\n"
+    << "        fluidTau0           " << num(yield ? r.tau0() : 0.0) << ";\n"
+    << "        fluidK              " << num(yield ? r.k() : r.nu()) << ";\n"
+    << "        fluidN              " << num(yield ? r.flowIndex : 1.0) << ";\n"
+    << "        fluidNu0            " << num(yield ? r.nu0() : 0.0) << ";\n"
+    << "        mixtureDensity      " << num(b.mixtureDensity) << ";\n"
+    << "        solidDensity        " << num(b.solidDensity) << ";\n"
+    << "        fluidDensity        " << num(r.density) << ";\n"
+    << "        airDensity          " << num(c.air.density) << ";\n"
+    << "        relaxation          " << num(b.relaxation) << ";\n    }\n"
+    << "    rho             " << num(b.mixtureDensity) << ";\n}\n\n"
+    << kAirPhase << "\n{\n    transportModel  Newtonian;\n"
+    << "    nu              " << num(c.air.viscosity / c.air.density) << ";\n"
+    << "    rho             " << num(c.air.density) << ";\n}\n\n"
+    << "sigma           " << num(c.surfaceTension) << ";\n";
+  return s.str();
+}
+
 std::string transportProperties(const LiquidCase& c) {
   const Rheology& r = c.liquid;
   std::ostringstream s;
@@ -230,6 +271,7 @@ std::string transportProperties(const LiquidCase& c) {
          "k = kappa/rho, nu0 = mu_0/rho;\n// nu = min(nu0, (tau0 + k sr^n)/sr), sr = sqrt(2) "
          "|symm(grad U)|.\n";
   }
+  if (c.bulkModel()) return s.str() + bulkTransport(c);
   s << "phases (" << kLiquidPhase << " " << kAirPhase << ");\n\n" << kLiquidPhase << "\n{\n";
   if (r.model == "Newtonian") {
     s << "    transportModel  Newtonian;\n    nu              " << num(r.nu()) << ";\n";
@@ -274,6 +316,11 @@ std::string alphaField(const LiquidCase& c) {
 }
 
 }  // namespace
+
+std::string solverName(const LiquidCase& c) {
+  if (c.bulkModel()) return "mixflowBulkFoam";
+  return c.content == "mixture" ? "mixflowCoupled" : "mixflowFoam";
+}
 
 double initialLiquidVolume(const LiquidCase& c) {
   double v = 0;
@@ -329,6 +376,15 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
   else
     os << "tau0 " << num(r.tau0()) << " m2/s2, k " << num(r.k()) << ", n " << num(r.flowIndex)
        << ", nu0 " << num(r.nu0()) << " m2/s (cap " << num(r.viscosityCap) << " Pa s)\n";
+  if (c.bulkModel()) {
+    const BulkModel& b = c.bulk;
+    os << "[mixflowPrepare] bulk model (mixflowBulkFoam): alpha_s " << num(b.solidFraction)
+       << ", rho* " << num(b.mixtureDensity) << " kg/m3, drifts (" << num(b.lambdaU) << ", "
+       << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource << "; solid nu_s "
+       << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi) << ", cohesion "
+       << num(b.cohesion) << " Pa, m_y " << num(b.regularisation) << " s (" << b.yieldPressure
+       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s\n";
+  }
   const bool autoCorrectors = c.numerics.nCorrectors == 0;
   const double D = c.viscousNumber(), limit = LiquidCase::kViscousNumberFewCorrectors;
   os << "[mixflowPrepare] PISO nCorrectors " << c.nCorrectorsUsed()

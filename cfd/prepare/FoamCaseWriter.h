@@ -16,6 +16,7 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 
 #include "LiquidCase.h"
 
@@ -26,6 +27,10 @@ inline constexpr const char* kLiquidPhase = "liquid";
 inline constexpr const char* kAirPhase = "air";
 
 void writeFoamCase(const LiquidCase& c, int ranks);
+
+// The solver the case runs: mixflowFoam (liquid), mixflowCoupled (mixture, cfdDem) or
+// mixflowBulkFoam (mixture, bulk); controlDict's application and mixflowPrepare -solver.
+std::string solverName(const LiquidCase& c);
 
 // Liquid volume of the initial alpha field (sum alpha V over cells), for the report; equals
 // L H W up to round-off because the sample box is filled exactly.

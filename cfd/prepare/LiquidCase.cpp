@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "Dictionary.h"
+#include "Scene.h"
 
 namespace mixflow::cfd {
 
@@ -30,7 +31,7 @@ void readSample(const Dictionary& d, LiquidSample& s) {
   s.height = d.scalar("height", Range::positive());
   s.width = d.scalar("width", Range::positive());
   // Used by the particles of a mixture only; validated here as the DEM half does.
-  d.scalarOr("solidFraction", 0.6056, Range::openClosed(0.0, 0.64));
+  s.solidFraction = d.scalarOr("solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64));
 }
 
 void readChannel(const Dictionary& d, LiquidChannel& c) {
@@ -129,7 +130,8 @@ void readLiquid(const Dictionary& d, Rheology& r, AirProperties& air, double& si
 void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
   d.allowOnly({"dimensions", "cellSize", "maxCo", "maxAlphaCo", "deltaT", "maxDeltaT",
                "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",
-               "pressureTolerance", "alphaTolerance", "writeFormat", "observables"});
+               "pressureTolerance", "alphaTolerance", "writeFormat", "observables",
+               "mixtureModel"});
   m.dimensions = static_cast<int>(d.integerOr("dimensions", m.dimensions, 2, 3));
   if (const auto v = d.scalarOrAuto("cellSize", Range::positive())) m.cellSize = *v;
   // Above 1 the MULES-bounded VOF scheme loses boundedness; interFoam tutorials use 0.5 to 1.
@@ -150,6 +152,7 @@ void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
     m.pressureTolerance = *v;
   m.alphaTolerance = d.scalarOr("alphaTolerance", m.alphaTolerance, Range::positive());
   m.writeFormat = d.wordOr("writeFormat", m.writeFormat, {"ascii", "binary"});
+  m.mixtureModel = d.wordOr("mixtureModel", m.mixtureModel, {"cfdDem", "bulk"});
 
   const Dictionary ob = d.subDictOrEmpty("observables");
   ob.allowOnly({"frontThreshold", "sectionX", "minDepth", "froudeDepth"});
@@ -162,6 +165,10 @@ void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
 }  // namespace
 
 double LiquidCase::maxViscosity() const {
+  if (bulkModel()) {
+    const double nuFluid = liquid.yieldStressModel() ? liquid.nu0() : liquid.nu();
+    return bulk.maxViscosity(sample.height, liquid.density, nuFluid);
+  }
   return liquid.yieldStressModel() ? liquid.viscosityCap : liquid.viscosity;
 }
 
@@ -174,7 +181,7 @@ double LiquidCase::minCellSize() const {
 double LiquidCase::viscousNumber() const {
   const double dt = coupledDeltaT > 0 ? coupledDeltaT : maxDeltaTUsed();
   const double h = minCellSize();
-  return maxViscosity() * dt / (liquid.density * h * h);
+  return maxViscosity() * dt / (phaseDensity() * h * h);
 }
 
 int LiquidCase::nCorrectorsUsed() const {
@@ -198,7 +205,7 @@ double LiquidCase::pressureToleranceUsed() const {
 double LiquidCase::maxDeltaTUsed() const {
   if (coupledDeltaT > 0) return numerics.maxDeltaT;
   const double h = minCellSize();
-  return std::min(numerics.maxDeltaT, kViscousNumberMax * liquid.density * h * h / maxViscosity());
+  return std::min(numerics.maxDeltaT, kViscousNumberMax * phaseDensity() * h * h / maxViscosity());
 }
 
 LiquidCase LiquidCase::read(const std::string& caseDir) {
@@ -223,6 +230,16 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
 
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
   readNumerics(cfd, c.numerics, c.observables);
+  if (c.numerics.mixtureModel == "bulk") {
+    if (c.content != "mixture")
+      cfd.fail("mixtureModel",
+               "bulk models a mixture of grains and liquid; this scene's content "
+               "is " +
+                   c.content + " (allowed: cfdDem for it)");
+    // The grains' density as the DEM half reads it (sceneProperties particles).
+    const double rhoS = dem::Scene::read(caseDir).particles.density;
+    c.bulk = readBulkModel(caseDir, c.sample.solidFraction, rhoS, c.liquid.density);
+  }
 
   // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not
   // rewritten.

@@ -9,12 +9,15 @@
 
 #include <string>
 
+#include "BulkModel.h"
+
 namespace mixflow::cfd {
 
 struct LiquidSample {
-  double length = 0;  // L along x (m), from the back wall x = 0 to the gate
-  double height = 0;  // H along y (m)
-  double width = 0;   // W along z (m): the channel width (side walls at z = 0, W)
+  double length = 0;              // L along x (m), from the back wall x = 0 to the gate
+  double height = 0;              // H along y (m)
+  double width = 0;               // W along z (m): the channel width (side walls at z = 0, W)
+  double solidFraction = 0.6056;  // the grains of a mixture (the DEM half's, or the bulk model's)
 };
 
 struct LiquidChannel {
@@ -61,6 +64,9 @@ struct CfdNumerics {
   double pressureTolerance = 0;   // p_rgh absolute tolerance (final: relTol 0); 0 = auto (below)
   double alphaTolerance = 1e-10;  // implicit alpha predictor: its residual is the only volume error
   std::string writeFormat = "ascii";  // ascii | binary
+  // A mixture's model: cfdDem (grains by LIGGGHTS, mixflowCoupled) or bulk (the quasi two-phase
+  // bulk model, mixflowBulkFoam; constant/bulkProperties).
+  std::string mixtureModel = "cfdDem";
 };
 
 struct ObservableSpec {
@@ -89,6 +95,10 @@ struct LiquidCase {
   // Mixture scenes (set by mixflowPrepare from the settled sample and couplingProperties): the
   // CFD step is fixed at exchangeEvery x DEM step and the solver is mixflowCoupled. 0: liquid.
   double coupledDeltaT = 0;
+  BulkModel bulk;  // mixtureModel bulk only
+  bool bulkModel() const { return content == "mixture" && numerics.mixtureModel == "bulk"; }
+  // Density of the non-air phase: the liquid's, or the bulk model's mixture density rho*.
+  double phaseDensity() const { return bulkModel() ? bulk.mixtureDensity : liquid.density; }
 
   // Mesh derived from the cell size: uniform cells fitted to the channel.
   int nx = 0, ny = 0, nz = 0;
@@ -101,8 +111,9 @@ struct LiquidCase {
   // regularisation cap; dt the coupled step, else maxDeltaTUsed (the adaptive step's bound, reached
   // where a capped liquid is near rest).
   double viscousNumber() const;
-  double maxViscosity() const;  // Pa s: the Newtonian viscosity or the regularisation cap
-  double minCellSize() const;   // m: the smallest cell edge (z only in 3-D)
+  // Pa s: the Newtonian viscosity or the regularisation cap (bulk: BulkModel::maxViscosity)
+  double maxViscosity() const;
+  double minCellSize() const;  // m: the smallest cell edge (z only in 3-D)
   // nCorrectors as written to fvSolution: the user's, or for `auto` 3 up to
   // kViscousNumberFewCorrectors and 10 above (bench/piso_correctors.py, docs/parameters.md).
   int nCorrectorsUsed() const;

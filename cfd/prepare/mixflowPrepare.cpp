@@ -1,11 +1,13 @@
 // mixflowPrepare: writes the OpenFOAM files of a liquid (or mixture) dam-break case for
 // mixflowFoam from the scene description the DEM half reads too.
-//   mixflowPrepare [-case DIR] [-np N] [-check]
+//   mixflowPrepare [-case DIR] [-np N] [-check] [-solver]
 // Reads DIR/constant/sceneProperties (content, sample, channel, liquid), DIR/system/cfdDict and
 // DIR/system/controlDict (endTime, writeInterval); writes blockMeshDict, controlDict, fvSchemes,
 // fvSolution, decomposeParDict (N ranks), transportProperties, g, turbulenceProperties and 0/.
 // A mixture also needs its settled sample (dem/settled.state), system/demDict and
-// constant/couplingProperties, and gets the DEM restart script (MixtureCase.h).
+// constant/couplingProperties, and gets the DEM restart script (MixtureCase.h); with cfdDict
+// mixtureModel bulk it is the bulk model's case instead (constant/bulkProperties, BulkModel.h).
+// -solver prints the solver the case runs (mixflowFoam, mixflowCoupled, mixflowBulkFoam).
 // -check validates every dictionary of a case of any content and prints what it derives, writing
 // nothing and running nothing, in well under a second: particles (sceneProperties, demDict,
 // controlDict as mixflowDem reads them), liquid (sceneProperties, cfdDict, controlDict), mixture
@@ -25,12 +27,12 @@
 
 namespace {
 void usage() {
-  std::cout << "Usage: mixflowPrepare [-case DIR] [-np N] [-check]\n"
+  std::cout << "Usage: mixflowPrepare [-case DIR] [-np N] [-check] [-solver]\n"
                "  Writes the OpenFOAM case files for mixflowFoam from DIR/constant/"
                "sceneProperties,\n  DIR/system/cfdDict and DIR/system/controlDict; -np N writes "
                "a decomposeParDict for N ranks.\n  -check only validates and reports, "
                "for a case of any content (a mixture\n  without its settled sample), writing "
-               "nothing.\n";
+               "nothing.\n  -solver prints the solver the case runs and exits.\n";
 }
 
 // constant/sceneProperties' content, read ahead of the reader of that content.
@@ -43,6 +45,7 @@ std::string sceneContent(const std::string& caseDir) {
 int main(int argc, char** argv) {
   std::string caseDir = ".";
   bool checkOnly = false;
+  bool printSolver = false;  // -solver: print the solver the case runs (after the checks)
   int ranks = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -58,6 +61,8 @@ int main(int argc, char** argv) {
       ranks = static_cast<int>(n);
     } else if (a == "-check") {
       checkOnly = true;
+    } else if (a == "-solver") {
+      printSolver = true;
     } else if (a == "-help" || a == "--help") {
       usage();
       return 0;
@@ -89,13 +94,19 @@ int main(int argc, char** argv) {
       return 0;
     }
     cfd::LiquidCase c = cfd::LiquidCase::read(caseDir);
+    if (printSolver) {
+      std::cout << cfd::solverName(c) << std::endl;
+      return 0;
+    }
+    // The CFD-DEM mixture needs its grains (settled sample, coupling); the bulk model does not.
+    const bool grains = c.content == "mixture" && !c.bulkModel();
     cfd::MixtureSetup mixture;
-    if (c.content == "mixture") mixture = checkOnly ? cfd::checkMixture(c) : cfd::prepareMixture(c);
+    if (grains) mixture = checkOnly ? cfd::checkMixture(c) : cfd::prepareMixture(c);
     cfd::describe(c, ranks, std::cout);
-    if (c.content == "mixture") cfd::describeMixture(mixture, c, std::cout);
+    if (grains) cfd::describeMixture(mixture, c, std::cout);
     if (!checkOnly) {
       cfd::writeFoamCase(c, ranks);
-      if (c.content == "mixture") cfd::writeMixtureDemScript(mixture);
+      if (grains) cfd::writeMixtureDemScript(mixture);
       std::cout << "[mixflowPrepare] wrote system/{blockMeshDict,controlDict,fvSchemes,"
                    "fvSolution,decomposeParDict}, constant/{transportProperties,g,"
                    "turbulenceProperties}, 0/{alpha.liquid,U,p_rgh}"

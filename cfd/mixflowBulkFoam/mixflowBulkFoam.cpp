@@ -1,0 +1,90 @@
+// mixflowBulkFoam: the quasi two-phase bulk mixture model (Pokhrel et al. 2017; docs/bulk_model.md)
+// of a grain-liquid mixture under air, on mixflowFoam's VOF algorithm (cfd/mixflowFoam, whose
+// step files it includes): the non-air phase alpha.liquid is the mixture, U its volumetric flux
+// u_m = alpha_s u_s + alpha_f u_f, rho* its constant density (as the paper, which has no mixture
+// density), and its viscosity the bulkMixture model (bulkMixtureViscosity.H: Coulomb-viscoplastic
+// solid, the pore liquid's rheology, the drifts lambda). The Lambda-weighted convection enters as
+// div(u_m u_m) plus the drift stress (bulkDriftStress.H). Constant solid fraction and drifts;
+// the reconstructed u_s, u_f, P_s, P_f are written with the fields (writeBulkFields.H).
+// With solid fraction 0 it is mixflowFoam with the pore liquid (tests/cfd bulk.*).
+
+#include <iostream>
+
+#include "CMULES.H"
+#include "EulerDdtScheme.H"
+#include "Function1.H"
+#include "Progress.h"
+#include "bulkMixtureViscosity.H"
+#include "fvCFD.H"
+#include "fvOptions.H"
+#include "gaussConvectionScheme.H"
+#include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "pimpleControl.H"
+#include "subCycle.H"
+#include "turbulentTransportModel.H"
+#include "upwind.H"
+
+int main(int argc, char *argv[]) {
+  argList::addNote(
+      "mixflowBulkFoam: quasi two-phase bulk mixture model (mixture/air VOF, constant solid "
+      "fraction and drifts, Coulomb-viscoplastic solid and the pore liquid's rheology)");
+
+  // clang-format off
+#include "setRootCase.H"
+#include "createTime.H"
+#include "createMesh.H"
+#include "createPimpleControl.H"
+#include "createTimeControls.H"
+#include "initContinuityErrs.H"
+#include "createFields.H"
+#include "createBulkFields.H"
+#include "checkSchemes.H"
+#include "createAlphaFluxes.H"
+#include "createFvOptions.H"
+#include "initCorrectPhi.H"
+  // clang-format on
+
+  turbulence->validate();
+
+  {
+  // clang-format off
+#include "CourantNo.H"
+#include "setInitialDeltaT.H"
+      // clang-format on
+  }
+
+      Info
+      << "\nStarting time loop\n"
+      << endl;
+
+  mixflow::Progress progress("bulk " + runTime.globalCaseName().name(), runTime.value(),
+                             runTime.endTime().value(), std::cout);
+
+  while (runTime.run()) {
+    // clang-format off
+#include "readTimeControls.H"
+#include "courantNumbers.H"
+#include "setVofDeltaT.H"
+    // clang-format on
+
+    ++runTime;
+
+    Info << "Time = " << runTime.timeName() << nl << endl;
+
+    // clang-format off
+#include "bulkDriftStress.H"
+#include "fluidStep.H"
+#include "writeBulkFields.H"
+    // clang-format on
+
+    runTime.write();
+
+    runTime.printExecutionTime(Info);
+    if (Pstream::master()) progress.update(runTime.value());
+  }
+  if (Pstream::master()) progress.update(runTime.value(), true);
+
+  Info << "End\n" << endl;
+
+  return 0;
+}

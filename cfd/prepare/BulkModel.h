@@ -1,0 +1,40 @@
+// The quasi two-phase bulk model of a mixture scene (docs/bulk_model.md), chosen by system/cfdDict
+// `mixtureModel bulk;` and set by constant/bulkProperties (optional: every entry has a default,
+// listed in docs/parameters.md "Bulk model"). SI input; writeFoamCase derives the kinematic
+// coefficients of mixflowBulkFoam's bulkMixture viscosity model from it.
+#pragma once
+
+#include <string>
+
+namespace mixflow::cfd {
+
+struct BulkModel {
+  double solidFraction = 0;  // alpha_s: bulkProperties solidFraction, else sample.solidFraction
+  // Drifts u_f = lambdaU u_s, w_f = lambdaW w_s, p_f = lambdaP p_s (kinematic pressures).
+  double lambdaU = 1, lambdaW = 1, lambdaP = 1;
+  std::string driftSource = "default (lambda = 1)";  // what set them (mixflowCalibrate records it)
+  // Solid: Coulomb-viscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik et al.
+  double solidViscosity = 0.03;                   // nu_s (m2/s, kinematic as in the paper)
+  double tanPhi = 0.4663;                         // tau_p = tan 25 deg
+  double cohesion = 0;                            // Pa
+  double regularisation = 100;                    // m_y (s)
+  std::string yieldPressure = "buoyancyReduced";  // paper | buoyancyReduced
+  double relaxation = 1;      // under-relaxation of the viscosity between correctors (1: none)
+  double solidDensity = 0;    // rho_s (kg/m3): sceneProperties particles.density
+  double mixtureDensity = 0;  // rho* (kg/m3): bulkProperties density, else alpha_s rho_s +
+                              // alpha_f rho_f
+
+  // kappa_y of the yield pressure kappa_y p_s: 1 (paper) or 1 - rho_f lambda_p / rho_s.
+  double yieldPressureFactor(double fluidDensity) const;
+  // Largest dynamic viscosity (Pa s) the mixture reaches: at rest, at the kinematic pressure g H
+  // of a column of height H, with the pore liquid at its cap (nuFluidMax, m2/s).
+  double maxViscosity(double height, double fluidDensity, double nuFluidMax) const;
+};
+
+// Reads caseDir/constant/bulkProperties (absent: all defaults) for a mixture of liquid density
+// fluidDensity whose grains (sceneProperties particles) have solidDensity; sampleSolidFraction is
+// sceneProperties sample.solidFraction. Throws InputError naming file, entry and allowed range.
+BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, double solidDensity,
+                        double fluidDensity);
+
+}  // namespace mixflow::cfd
