@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Report of the Table 1 scenes run by scripts/suite.py (issue 6). docs/suite.md.
+"""Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
 
 usage: report.py [--work runs/reference] [--out results/li_zhao_2018]
 
