@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Benchmark (issue 4): the coupled HB&P scene against the dry P scene with the same particles and
+"""Benchmark: the coupled HB&P scene against the dry P scene with the same particles and
 DEM settings: CPU-time ratio of the collapse, and the coupled run's split between DEM (inside
 LIGGGHTS runs), coupling (exchanges: locate, void fraction, forces, source) and fluid (the rest).
 Target: coupled <= 1.3 x dry.

@@ -4,7 +4,7 @@
 mixflowDem records every LIGGGHTS command it issues in <case>/dem/in.liggghts (settling, gate removal,
 every `run` chunk, outlet deletions, snapshots). Replaying that script with plain `liggghts` does the
 same particle work without our per-sample observables (energies, front clustering, MPI gathers), so the
-wall-time ratio is the driver's overhead. Target (issue 2): driver within 5 % of plain LIGGGHTS.
+wall-time ratio is the driver's overhead. Target: driver within 5 % of plain LIGGGHTS.
 
 usage: dem_driver_vs_liggghts.py [--case DIR] [--ranks N] [--repeat K] [--json OUT]
        (default case cases/P-quick; binaries from build/bin and PATH)"""

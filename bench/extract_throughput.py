@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Extraction throughput of mixflowExtract (issue 5): 27 thousand particles x 100 snapshots.
+"""Extraction throughput of mixflowExtract: 27 thousand particles x 100 snapshots.
 
 Builds a synthetic case shaped like the paper's dry column P (0.9 x 0.6 x 0.6 m sample, d = 24 mm,
 27,100 particles, 4.0 x 1.2 m channel) with 100 snapshot files in mixflowDem's format (legacy VTK

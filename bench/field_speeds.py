@@ -3,7 +3,7 @@
 saturated column show here) and in liquid cells (alpha.liquid > 0.5), at each written time.
 
 usage: field_speeds.py CASE [CASE ...] [--json OUT]
-Used in bench/README.md (session 9) to tell the air jets' agitation from the exchange interval's
+Used in bench/README.md to tell the air jets' agitation from the exchange interval's
 effect at the paper's DEM stiffness."""
 import argparse
 import json

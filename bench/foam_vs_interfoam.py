@@ -2,7 +2,7 @@
 """Benchmark: mixflowFoam in pure-liquid mode (voidfraction 1, no particle source) against Debian's
 /usr/bin/interFoam on the same damBreak mesh (OpenFOAM's laminar tutorial, 2268 cells, taken from the
 OpenFOAM source tree that scripts/install-deps.sh extracts). Prints cell-steps per CPU second for
-each and their ratio. Target (issue 3): mixflowFoam within 10 % of interFoam.
+each and their ratio. Target: mixflowFoam within 10 % of interFoam.
 
 CPU time (user + sys of the solver process) is measured rather than wall time: on a shared machine
 wall time also counts waiting for a core. Both runs take the same time steps (the tests assert

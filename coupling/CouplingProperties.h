@@ -1,33 +1,7 @@
 // constant/couplingProperties: what a coupled case asks of the coupling (OpenFOAM dictionary
-// syntax, read with mixflow's validating reader). Every entry with its default:
-//
-//   demScript           "system/in.liggghts";  // LIGGGHTS commands of the scene (required)
-//   exchangeEvery       100;        // DEM steps per exchange; CFD deltaT = exchangeEvery x DEM dt
-//   forceModels         (DiFeliceDrag buoyancy viscousForce);  // only these run (required,
-//                                   // at least one)
-//   voidFractionModel   divided;    // divided | centre
-//   interpolation       cell;       // cell | cellPoint: fluid values at a particle
-//   sourceDistribution  volume;     // volume: reaction spread like the particle's volume;
-//                                   // centre: all in the centre's cell
-//   dragReactionVelocity particleMean;  // particleMean | cell: the velocity the explicit part of
-//                                   // the fluid's drag reaction is taken at (SourceAssembly.h)
-//   voidfractionMin     0.05;       // eps_f floor; default: mixflowProperties' voidfractionMin
-//   logEvery            1;          // exchanges per line of postProcessing/coupling/exchange.csv
-//   dragIntegration     implicit;   // implicit: drag updated at every DEM step (backward Euler);
-//                                   // held: the exchange's drag held over the interval
-//   dragFluidResponse   none;       // implicit only: none | share | continuity (the fluid
-//                                   // velocity the drag sees within an interval; see below)
-//   pressureCoupling    mixture;    // fluid | mixture (implicit, dragFluidResponse none only;
-//                                   // the default there, fluid otherwise): the pressure equation
-//                                   // carries the grains' drag response
-//   dragRelaxationLimit 0.5;        // held only: beta <= limit x m / T (0: no limit)
-//   dragCounterflowLimit 0.5;       // held only: beta <= limit / c x m / T, c = (1 - eps) / eps
-//                                   // (0: no limit)
-//   maxVelocity         100;        // m/s: |U| above it stops the run (a diverging step)
-//   DiFeliceDragCoeffs  { divideByVoidfraction yes; }   // default: yes in formulation B
-//   dividedCoeffs       { nShells 3; nDirections 16; smoothing 0; }  // smoothing: face band
-//                                   // / particle radius over which a point's weight is shared
-//                                   // with the cell across (0: off)
+// syntax, read with mixflow's validating reader: unknown entries, unknown model names and
+// inconsistent combinations stop the run before it starts). Every entry and its default:
+// coupling/README.md ("Options") and docs/parameters.md ("Mixture scenes").
 #pragma once
 
 #include <string>

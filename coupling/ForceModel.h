@@ -1,4 +1,4 @@
-// Fluid-particle force models (physics.md section 4), selected at run time by name from the
+// Fluid-particle force models (docs/model.md §6), selected at run time by name from the
 // `forceModels (...)` list of constant/couplingProperties; only the listed ones run.
 //
 // A model sees one particle and the fluid sampled at it, and returns its force split as
@@ -55,7 +55,7 @@ enum FluidNeeds : unsigned {
 // Settings every model may check its consistency against.
 struct ForceContext {
   Vec3 g;                              // gravitational acceleration [m/s2]
-  std::string formulation = "B";       // volume-averaged equations (physics.md section 3)
+  std::string formulation = "B";       // volume-averaged equations (docs/model.md §3)
   std::string viscousStress = "full";  // fluid viscous term: full div(tau) or div(eps_f tau)
   LiquidLaw liquid;                    // the pore liquid's law (drag viscosity closures)
 };

@@ -14,7 +14,7 @@
 //                 own velocity, including cells that hold only slivers of particles centred
 //                 elsewhere (a bed's edge and top row). Exact for any partition: each rank's parts
 //                 give w_q beta (v - U_i).
-//   cell          U_c (sessions 1-9): the explicit term cancels the implicit drag of a cell
+//   cell          U_c: the explicit term cancels the implicit drag of a cell
 //                 wherever its velocity differs from the velocity at the particles' centres, so
 //                 sliver cells carry no drag on their own velocity. That let air flow at 10-20
 //                 m/s through the edge cells of a saturated column (coupling/README.md, "Air

@@ -2,7 +2,7 @@
 //   F_v = V_p div(tau),   tau = rho nu_eff (grad U + grad U^T) (mixflowFoam's deviatoric stress,
 //                         positive in tension), div(tau) the viscous force per unit volume the
 //                         fluid's momentum equation carries on its right-hand side.
-// Sign: physics.md/Li & Zhao print F_v = -(div tau) V_p. That is the same force written with
+// Sign: Li & Zhao print F_v = -(div tau) V_p. That is the same force written with
 // CFDEMcoupling's field "divTau", which holds minus the divergence of the viscous stress (the
 // momentum-flux sign convention, tau counted positive in compression). In mixflowFoam's
 // convention the force is +V_p div(tau), the analogue of -V_p grad(p) for the pressure: a

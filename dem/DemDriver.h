@@ -1,5 +1,5 @@
 // Runs a dry (particles-only) dam break on LIGGGHTS: loose fill, settling behind the gate, gate
-// removal at t = 0, collapse with outlet/top deletion, and the granular outputs of physics.md §5.
+// removal at t = 0, collapse with outlet/top deletion, and the granular outputs of docs/model.md §8.
 // No fluid mesh is built and no fluid equation is solved for such a scene.
 #pragma once
 

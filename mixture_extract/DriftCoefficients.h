@@ -1,4 +1,4 @@
-// Mixture variables and drift coefficients of the quasi two-phase model (physics.md §6, Pokhrel et
+// Mixture variables and drift coefficients of the quasi two-phase model (docs/model.md §9, Pokhrel et
 // al. 2017) from a bin's (or region's) window sums, with a validity mask instead of any division by
 // a vanishing quantity: an ill-posed value is never computed, it is stored as NaN with its mask 0
 // and the reason bits saying why.

@@ -1,5 +1,6 @@
-// Fluid fields for the extractor. The coupled solver is not written yet, so the extractor reads
-// fluid data through this small interface: for a time, every fluid cell's centre, volume, liquid
+// Fluid fields for the extractor, read through this small interface so that the binning does not
+// depend on OpenFOAM (FoamFluidSource reads mixflowCoupled's or mixflowFoam's time directories;
+// SyntheticFluidSource feeds tests): for a time, every fluid cell's centre, volume, liquid
 // fraction alpha_l (VOF, share of the fluid that is liquid), fluid volume fraction eps_f
 // (= 1 - particle fraction of the cell), velocity U (x, y) and pressure p.
 // Cells are binned by centre with weight alpha_l eps_f V (the liquid volume of the cell).

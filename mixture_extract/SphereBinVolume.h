@@ -1,5 +1,5 @@
 // Exact volume of a sphere inside an averaging bin that spans the whole channel width (z), i.e. the
-// sphere's volume inside the infinite prism x0 < x < x1, y0 < y < y1 (physics.md §6: particle
+// sphere's volume inside the infinite prism x0 < x < x1, y0 < y < y1 (docs/model.md §9: particle
 // volume split exactly between bins, not centre-counted).
 //
 // Method (closed form, no quadrature): the corner function

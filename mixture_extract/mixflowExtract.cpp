@@ -1,4 +1,4 @@
-// mixflowExtract: alpha_s and the drift coefficients of the quasi two-phase model (physics.md §6)
+// mixflowExtract: alpha_s and the drift coefficients of the quasi two-phase model (docs/model.md §9)
 // from a mixflow case, on the averaging grid and time windows of <case>/system/extractDict.
 //   mixflowExtract [-case DIR] [-dict FILE] [-output BASE] [-overwrite] [-check] [-threads N]
 // Exit status: 0 done, 2 bad input (message names the file, entry and allowed range), 1 other

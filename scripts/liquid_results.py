@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Post-processing of scripts/liquid_results.sh (pure-liquid scenes, issue 3).
+"""Post-processing of scripts/liquid_results.sh (pure-liquid scenes).
 
   liquid_results.py --calibrate CASE T
       prints the channel length whose outlet the water front of CASE (a W run in a long channel)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Pure-liquid results (issue 3) into results/pure_liquids/.
+# Pure-liquid results into results/pure_liquids/.
 # Usage: scripts/liquid_results.sh [RANKS] [side-walls]
 # Runs copies of cases/W, HB, B, HB-I, B-I in WORK (default /tmp/mixflow-liquid) at a fidelity this
 # machine manages (2-D: dimensions 2, one cell across the width; the cases themselves are 3-D):

@@ -1,4 +1,4 @@
-"""results/mixtures/ (issue 4): fronts, Froude and Savage numbers of the three mixture scenes from a
+"""results/mixtures/: fronts, Froude and Savage numbers of the three mixture scenes from a
 suite work directory, and summary.json with the paper's numbers beside ours.
 
     python3 scripts/mixture_results.py [--work runs/reference] [--out results/mixtures]

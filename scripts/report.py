@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Report of the Table 1 scenes run by scripts/suite.py (issue 6). docs/suite.md.
+"""Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
 
 usage: report.py [--work runs/reference] [--out results/li_zhao_2018]
 
@@ -7,7 +7,7 @@ Reads the finished scenes (WORK/<scene>/.done) and writes OUT/report.md, OUT/*.p
 OUT/summary.json: liquid and granular fronts, relative velocities, kinetic energies, E_pd and E_fc
 (Eqs. 13-14), fluid-particle forces, Froude and Savage numbers, profiles at t = 0.63 and 0.75 s,
 dry deposits and the runout law, HB-I/B-I normalised fronts, and the table "the paper says / we
-get" for the numbers of physics.md section 5. A scene that is not finished is listed as such; a
+get" for the numbers of docs/model.md §8. A scene that is not finished is listed as such; a
 figure or number that the finished scenes do not allow says so instead of stopping the report.
 """
 
@@ -763,7 +763,7 @@ def table(sc, law):
                      else "; " + fidelity(*(sc[n] for n in got)))
         rows.append(row(q, paper, ours, tier, agree, note))
 
-    # Outflow start (physics.md section 1: the channel-length calibration).
+    # Outflow start (docs/model.md §1: the channel-length calibration).
     for n in ("W", "W+P"):
         s, paper = sc[n], PAPER["outflow_starts_s"][n]
         q = f"{s.paper_name}: liquid starts leaving the channel (s)"

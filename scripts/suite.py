@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs the scenes of Li & Zhao (2018) Table 1 at a fidelity tier (issue 6). docs/suite.md.
+"""Runs the scenes of Li & Zhao (2018) Table 1 at a fidelity tier (docs/suite.md).
 
 usage: suite.py --tier quick|reference|paper|FILE [--np N] [--scenes P,W,HB+P,...] [--work DIR]
                 [--cost-only] [--force] [--dry-run] [--progress-every S] [--set FILE.ENTRY=VALUE ...]

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""The speed/accuracy trade of one scene across fidelity tiers (issue 6; docs/suite.md).
+"""The speed/accuracy trade of one scene across fidelity tiers (docs/suite.md).
 
 usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/reference]
                      [--times 0.1,0.2,0.3,0.5,1,1.5]
                      [--paper-cost results/li_zhao_2018/cost_paper.json]
-                     [--paper-physics results/bench/coupled_vs_dry_paper_dem_s11.json]
+                     [--paper-physics results/bench/coupled_vs_dry_paper_dem_s13.json]
                      [--out results/li_zhao_2018]
 
 For each tier whose run of the scene finished (scripts/suite.py writes WORK/<scene>/.done): the

@@ -1,5 +1,5 @@
 // mixflowFoam: incompressible two-phase (liquid + air) VOF solver with a free surface, written
-// in the volume-averaged form an unresolved CFD-DEM coupling needs (physics.md section 3,
+// in the volume-averaged form an unresolved CFD-DEM coupling needs (docs/model.md §3,
 // formulation B of Zhou et al. 2010; cfd/README.md explains the choice).
 //
 // Unknowns: interstitial fluid velocity U, p_rgh = p - rho g.(x - x_ref), liquid fraction of the

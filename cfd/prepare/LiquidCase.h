@@ -3,7 +3,7 @@
 //   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
 //   system/controlDict        endTime, writeInterval (the user's; never rewritten)
 // Every entry is validated on reading (file, entry, allowed range); defaults are listed in
-// docs/parameters.md (liquid scenes). Units are SI as in physics.md section 2 (Pa, Pa s^n, kg/m3);
+// docs/parameters.md (liquid scenes). Units are SI as in docs/model.md §5 (Pa, Pa s^n, kg/m3);
 // OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
 #pragma once
 
@@ -26,7 +26,7 @@ struct LiquidChannel {
   std::string sideWalls = "walls";  // walls (no-slip) | periodic (cyclic z faces, 3-D only)
 };
 
-// Rheology in SI units (physics.md section 2): tau = tau_c + kappa gamma_dot^n.
+// Rheology in SI units (docs/model.md §5): tau = tau_c + kappa gamma_dot^n.
 struct Rheology {
   std::string model;        // Newtonian | HerschelBulkley | Bingham
   double density = 0;       // rho (kg/m3)
@@ -44,7 +44,7 @@ struct Rheology {
 };
 
 struct AirProperties {
-  double density = 1.0;        // kg/m3 (physics.md Table 2)
+  double density = 1.0;        // kg/m3 (docs/model.md §4)
   double viscosity = 1.48e-5;  // Pa s (Table 2 gives kappa = 1.48e-5 with n = 1)
 };
 
@@ -70,7 +70,7 @@ struct CfdNumerics {
 };
 
 struct ObservableSpec {
-  double frontThreshold = 0.5;  // alpha_l >= this counts as liquid (physics.md section 5)
+  double frontThreshold = 0.5;  // alpha_l >= this counts as liquid (docs/model.md §8)
   double sectionX = 1.38;  // Froude section x (m) (Li & Zhao Eq. 15); -1: none (outside channel)
   double minDepth = 0;     // m; below it the section Froude number is not defined; 0 = auto
   // h of Fr = v / sqrt(g h): the liquid surface height ("surface": the flow depth one sees, the

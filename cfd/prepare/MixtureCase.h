@@ -1,4 +1,4 @@
-// The mixture half of mixflowPrepare (content mixture, physics.md section 1): the settled particle
+// The mixture half of mixflowPrepare (content mixture, docs/model.md §1): the settled particle
 // sample (mixflowDem -settleOnly: dem/settled.state) saturated with liquid up to its top, the gate
 // removed at t = 0, run by mixflowCoupled.
 //   - the liquid fills [0, L] x [0, settled height] (c.sample.height is set to it);

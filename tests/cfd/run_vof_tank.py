@@ -35,8 +35,8 @@ Scenarios (--scenario):
                  fSource = (1 - eps_f) rho_l g, the reaction of the particles' buoyancy (what
                  the coupling passes for a settled bed at rest). Pass: max |U| <= 1e-6 m/s and
                  dp/dy = -rho_l g in all the liquid within 1e-6 relative: eps_f creates no
-                 spurious flow and the pressure is the liquid's hydrostatic one (physics.md
-                 section 3).
+                 spurious flow and the pressure is the liquid's hydrostatic one (docs/model.md
+                 §3).
   voidfraction-no-buoyancy-moves
                  negative control: the random eps_f of voidfraction-buoyancy WITHOUT the source.
                  Then eps_f rho g varies sideways, is not balanced by any pressure, and the
@@ -72,7 +72,7 @@ Scenarios (--scenario):
                  divergence-free Us).
   herschel-bulkley
                  closed tank 0.5 x 0.2 m (50 x 20), a 0.1 x 0.1 m column collapsing, run twice:
-                 water and the Herschel-Bulkley liquid of physics.md Table 2 (rho 1000 kg/m3,
+                 water and the Herschel-Bulkley liquid of docs/model.md §5 (rho 1000 kg/m3,
                  tau_c 30.002 Pa, kappa 4.279 Pa s^n, n 0.479; OpenFOAM's kinematic inputs
                  tau0 = 0.030002 m2/s2, k = 0.004279 m2/s^(2-n), nu0 cap 1 m2/s), 0.4 s. Pass:
                  both runs finish; alpha within [-1e-6, 1 + 1e-6]; liquid volume conserved to

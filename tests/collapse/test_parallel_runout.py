@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Issue 2 test 6: the small collapse with 2 MPI ranks gives the serial runout.
+"""The small collapse with 2 MPI ranks gives the serial runout.
 
 Tolerance: 2 particle diameters (2.4 cm, about 8 % of this runout): the front of a granular deposit is
 only defined to a grain or two. On this machine the 2-rank run (x split) reproduces the serial
 trajectories bit for bit, so the difference is 0. Caution: a round-off-level perturbation of the same
 serial run (e.g. atoms re-ordered by a restart write) moves this small column's runout by up to
-±0.03 m (0.307 to 0.371 m seen before session 12, when each restart write also left LIGGGHTS on
-stale neighbour lists for the next steps: LiggghtsSession::writeRestart), because the front particle of a thin tail attaches or detaches; a
+±0.03 m (0.307 to 0.371 m seen when each restart write left LIGGGHTS on stale neighbour
+lists for the next steps, which LiggghtsSession::writeRestart now prevents), because the front particle of a thin tail attaches or detaches; a
 future LIGGGHTS that were not bit-reproducible across ranks would need a statistical comparison."""
 import sys
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 4 tests 3 and 4: action equals reaction, and the particle volume the fluid sees equals
+"""Action equals reaction, and the particle volume the fluid sees equals
 the particles' volume, at every exchange of a coupled run.
 
 Case: a box 3 x 6 x 3 cm of 6 mm cells (3 dp) open to the atmosphere at the top (so that the

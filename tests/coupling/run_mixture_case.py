@@ -1,4 +1,4 @@
-"""Mixture scene end to end (issue 4 cases; issue 5 test 5): a copy of cases/W+P-quick, shortened,
+"""Mixture scene end to end: a copy of cases/W+P-quick, shortened,
 run through its Allrun (mixflowDem -settleOnly, mixflowPrepare, blockMesh, mixflowCoupled), then
 checked against conservation laws, and then mixflowExtract on it, checked with h5py.
 
@@ -9,7 +9,7 @@ Asserts (tolerances and why):
   - every exchange: action = reaction to 1e-10 of sum |F_i| (the source is assembled from the same
     forces; round-off only), fluid-seen particle volume = particle volume - outside - clipped to
     1e-9 (exact volume split);
-  - liquid volume balance (V0 - V_domain - V_outlet - V_top) / V0 within 1e-6 every step (issue 3);
+  - liquid volume balance (V0 - V_domain - V_outlet - V_top) / V0 within 1e-6 every step;
   - particles: remaining + deleted at outlet + deleted at top + lost = settled count, exactly;
   - the settled sample is saturated: initial liquid volume = pore volume of the box
     [0, L] x [0, settled height] x [0, W] within the particle volume of the cell row the top cuts;
@@ -218,7 +218,7 @@ def main():
           f"(bound dy = {dy:.3f} m); liquid volume depth {depth0:.4f} m")
     ok &= abs(surf0 - height) <= dy and depth0 < surf0 - 0.3 * height
 
-    # mixflowExtract on the coupled case (issue 5 test 5).
+    # mixflowExtract on the coupled case.
     with open(os.path.join(case, "system", "extractDict"), "w") as f:
         f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
                 "grid { x (-0.012 1.188 20); y (-0.012 0.348 6); }\n"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 4 test 5: a settled bed in still liquid (formulation B consistency, physics.md section 3).
+"""A settled bed in still liquid (formulation B consistency, docs/model.md §3).
 
 Case: a box 3 x 6 x 3 cm of 6 mm cells (3 dp), open to the atmosphere at the top, water up to
 4.5 cm, at rest; a bed of 4 layers of 15 x 15 glass spheres (d 2 mm, 2500 kg/m3) in simple-cubic

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 4 test 1: a single sphere settling in a box of still liquid reaches the terminal velocity
+"""A single sphere settling in a box of still liquid reaches the terminal velocity
 of the Di Felice single-particle drag law.
 
 Reference: tests/reference/terminal_velocity_single_sphere.csv, row --row (default 'glass 0.5 mm

@@ -575,7 +575,7 @@ TEST(GidaspowDrag, FixedBedGivesErgunPressureDrop) {
               1e-15);
 }
 
-// Issue 4 test 6, the force laws at the extremes: Re_p -> 0, very large Re_p, eps_f at the floor
+// The force laws at the extremes: Re_p -> 0, very large Re_p, eps_f at the floor
 // and at 1, a capped yield-stress liquid at rest. Every coefficient must be finite and positive
 // and reach the law's own limits; inputs outside the law's support throw with a message.
 TEST(ForceModels, DiFeliceExtremes) {

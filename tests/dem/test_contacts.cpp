@@ -412,7 +412,7 @@ struct Stats {
 };
 
 // ---------------------------------------------------------------------------------------------
-// 1. Normal restitution for the paper material (physics.md §2: d 24 mm, rho 2500, E 70 / 700 GPa,
+// 1. Normal restitution for the paper material (docs/model.md §2: d 24 mm, rho 2500, E 70 / 700 GPa,
 //    nu 0.3, e 0.7, mu 0.7, mu_r 0.1, cdt) at v_rel = 1 m/s, against the CSV's e_actual.
 //
 // The time-step error of e depends on where the first touch falls within a step (the damping

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 2 test 5: bad input stops before the run with a message naming the file, the entry and the
+"""Bad input stops before the run with a message naming the file, the entry and the
 allowed range (or the allowed words). Each case breaks one thing in a copy of a valid case and runs
 `mixflowDem -check`, which must exit with status 2 and print all the expected fragments.
 

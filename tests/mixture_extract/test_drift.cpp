@@ -1,9 +1,9 @@
 // Mixture variables and drift coefficients on synthetic particle and fluid fields
 // (mixture_extract/BinAccumulator, DriftCoefficients, WindowResult).
-//   issue 5 test 1: u_f = 1.3 u_s gives lambda_u = 1.3 to round-off (and the Lambda of Eq. 36);
-//   issue 5 test 3 (synthetic): p_s of a static gravity-loaded packing equals the weight of the
+//   u_f = 1.3 u_s gives lambda_u = 1.3 to round-off (and the Lambda of Eq. 36);
+//   p_s of a static gravity-loaded packing equals the weight of the
 //     material above the bin;
-//   issue 5 test 4: bins with u_s = 0 (and without particles, with p_s = 0) are masked and counted,
+//   bins with u_s = 0 (and without particles, with p_s = 0) are masked and counted,
 //     with floating-point traps on: nothing divides by zero;
 //   u_f masked where the bin holds little liquid, p_s masked without particle samples;
 //   streaming stress and the Eq. 9 residual on fields with known answers.
@@ -65,7 +65,7 @@ struct FpTraps {
 
 }  // namespace
 
-// Issue 5 test 1: particles jittered across bin edges, uniform velocity per snapshot changing in
+// Lambda_u: particles jittered across bin edges, uniform velocity per snapshot changing in
 // time, fluid at 1.3 times the particle velocity. lambda_u = lambda_w = 1.3 to round-off.
 TEST(Drift, LambdaOfUniformDriftIsExact) {
   const AveragingGrid g(0.0, 0.3, 6, 0.0, 0.2, 4, 0.05);
@@ -136,7 +136,7 @@ TEST(Drift, LambdaOfUniformDriftIsExact) {
   EXPECT_NEAR(res.regions[0].values.value[fLambdaU], 1.3, 1e-13);
 }
 
-// Issue 5 test 3 (synthetic): simple cubic lattice of touching spheres (spacing d) on the floor,
+// Granular pressure (synthetic): simple cubic lattice of touching spheres (spacing d) on the floor,
 // 12 layers; each particle carries the LIGGGHTS-like contact stress x volume of a hydrostatic-like
 // column (K = 1): C_i = -P_i d^3 I with P_i = m g (n_above + 1/2) / d^2, the weight of the
 // particles above its centre per unit area. The bins' p_s must equal the weight of material above
@@ -180,7 +180,7 @@ TEST(Drift, StaticColumnPressureIsTheWeightAbove) {
   }
 }
 
-// Issue 5 test 4: a moving left half, a static right half (u_s = w_s = 0 exactly, no contact
+// Masks: a moving left half, a static right half (u_s = w_s = 0 exactly, no contact
 // stress: p_s = 0), an empty top row, liquid everywhere. Static bins: lambda_u, lambda_w,
 // lambda_p masked with their reasons and counted; empty bins: no_particles; nothing divides by
 // zero (floating-point traps on while everything is computed).

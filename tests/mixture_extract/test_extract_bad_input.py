@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 5 test 6: bad input stops mixflowExtract with exit status 2 and a message naming the file,
+"""Bad input stops mixflowExtract with exit status 2 and a message naming the file,
 the entry and the allowed range (or the available data), before anything is written (the output
 directory is compared before and after each case). Each case breaks one thing in a copy of a
 valid synthetic case (particles only, snapshots every 0.01 s up to 0.09 s, finished).

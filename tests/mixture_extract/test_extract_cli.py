@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""mixflowExtract end to end on a synthetic coupled-like case on disk (issue 5 tests 1, 5-ready):
+"""mixflowExtract end to end on a synthetic coupled-like case on disk:
 particles in mixflowDem's snapshot format moving at u_s(t), w_s(t) uniform in space, the fluid
-as OpenFOAM ASCII time directories (the coupled solver's future output) at u_f = 1.3 u_s,
+as OpenFOAM ASCII time directories (the format mixflowCoupled writes) at u_f = 1.3 u_s,
 w_f = 1.3 w_s, liquid up to y = 0.1 m (air above).
 
 Checks: lambda_u = lambda_w = 1.3 to 1e-12 through the files; every field has units and meaning;

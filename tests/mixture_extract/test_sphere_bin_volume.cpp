@@ -1,8 +1,8 @@
 // Exact sphere / bin volumes (mixture_extract/SphereBinVolume.h, AveragingGrid::splitSphere).
 //   corner function against an independent quadrature of the circle-segment areas (1e-13 r^3);
-//   slabs against dem::sphereSlabVolume; issue 5 test 2 (pieces sum to the particle volume,
-//   1e-12 relative) and test 1b (a uniform lattice gives its exact alpha_s in every bin, with
-//   particles straddling the bin edges, 1e-12).
+//   slabs against dem::sphereSlabVolume; the pieces sum to the particle volume
+//   (1e-12 relative); a uniform lattice gives its exact alpha_s in every bin, with
+//   particles straddling the bin edges (1e-12).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,7 +135,7 @@ TEST(SphereBinVolume, SlabsMatchDemObservable) {
   }
 }
 
-// Issue 5 test 2: the pieces of every particle sum to its volume, and the binned total equals
+// Volume conservation: the pieces of every particle sum to its volume, and the binned total equals
 // the particles' total volume, to 1e-12 relative (bins smaller and larger than the particles).
 TEST(SphereBinVolume, TotalParticleVolumeIsConserved) {
   std::mt19937_64 rng(11);
@@ -177,7 +177,7 @@ TEST(SphereBinVolume, TotalParticleVolumeIsConserved) {
   }
 }
 
-// Issue 5 test 1b: a simple cubic lattice (spacing a, r = 0.45 a, offset so that particles
+// Uniform lattice: a simple cubic lattice (spacing a, r = 0.45 a, offset so that particles
 // straddle every bin edge) gives alpha_s = (4/3 pi r^3) / a^3 in every bin when the bins are whole
 // multiples of the lattice period.
 TEST(SphereBinVolume, UniformLatticeGivesExactAlphaInEveryBin) {

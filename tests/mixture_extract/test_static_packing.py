@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 5 test 3 on a real LIGGGHTS packing: the settled column of tests/collapse/column (about 1700
+"""Granular pressure on a real LIGGGHTS packing: the settled column of tests/collapse/column (about 1700
 beads of 12 mm, periodic width, softened 7 MPa) at the gate opening, t = 0, from mixflowDem's own
 snapshot (positions, c_pstress from compute stress/atom). On bins of 2 d in the column's interior
 (x in [d.., 0.216] m, away from the back wall and the gate):

@@ -10,7 +10,7 @@
 using namespace mixflow::dem;
 
 TEST(ContactTimes, RayleighTimeOfPaperParticle) {
-  // physics.md §2: T_R ~ 1.2e-5 s for 70 GPa; LIGGGHTS' check/timestep/gran reports 1.2412e-5 s.
+  // docs/model.md §2: T_R ~ 1.2e-5 s for 70 GPa; LIGGGHTS' check/timestep/gran reports 1.2412e-5 s.
   EXPECT_NEAR(rayleighTime(0.012, 2500, 70e9, 0.3), 1.2412e-5, 1e-8);
 }
 
