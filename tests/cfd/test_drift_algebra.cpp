@@ -1,0 +1,109 @@
+// Unit tests of the bulk model's algebra (cfd/mixflowBulkFoam/DriftAlgebra.h) against exact
+// identities of the quasi two-phase model (docs/bulk_model.md) and the paper's own numbers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "DriftAlgebra.h"
+
+using namespace mixflow::bulk;
+
+namespace {
+
+// Lambda_uu - 1 = alpha_s alpha_f (1 - lambda_u)^2 Lambda_u^2, and its w and uw twins: the
+// Lambda-weighted convection is u_m u_m plus the drift stress (checked at alpha_s 0.6, lambda 1.7:
+// 0.07178 both ways).
+TEST(DriftAlgebra, InertialCoefficientsAreOnePlusDriftStress) {
+  const double a = 0.6, f = 0.4;
+  const Drifts d{1.7, 0.8, 1.1};
+  const LambdaCoefficients c = lambdaCoefficients(a, d);
+  EXPECT_NEAR(c.uu - 1, a * f * std::pow(1 - d.lambdaU, 2) * c.u * c.u, 1e-14);
+  EXPECT_NEAR(c.ww - 1, a * f * std::pow(1 - d.lambdaW, 2) * c.w * c.w, 1e-14);
+  EXPECT_NEAR(c.uw - 1, a * f * (1 - d.lambdaU) * (1 - d.lambdaW) * c.u * c.w, 1e-14);
+  EXPECT_NEAR(lambdaCoefficients(0.6, {1.7, 1.7, 1}).uu - 1, 0.07178, 5e-6);
+
+  // The same as a stress: Lambda_ij u_mi u_mj = u_mi u_mj + tau_D,ij for any u_m.
+  const Vec2 um{0.7, -0.3};
+  const Sym2 t = driftStress(a, d, um);
+  EXPECT_NEAR(c.uu * um.x * um.x, um.x * um.x + t.xx, 1e-14);
+  EXPECT_NEAR(c.uw * um.x * um.y, um.x * um.y + t.xy, 1e-14);
+  EXPECT_NEAR(c.ww * um.y * um.y, um.y * um.y + t.yy, 1e-14);
+}
+
+TEST(DriftAlgebra, Limits) {
+  const Drifts d{2.5, 0.4, 0.7};
+  // alpha_s = 0: every inertial Lambda is 1 and the diffusivity is the fluid's, for any lambda.
+  const LambdaCoefficients c0 = lambdaCoefficients(0, d);
+  EXPECT_DOUBLE_EQ(c0.uu, 1);
+  EXPECT_DOUBLE_EQ(c0.ww, 1);
+  EXPECT_DOUBLE_EQ(c0.uw, 1);
+  EXPECT_NEAR(mixtureDiffusivity(0, d, 5.0, 1e-3), 1e-3, 1e-15);
+  // alpha_s = 1: all Lambda 1, the diffusivity is the solid's.
+  const LambdaCoefficients c1 = lambdaCoefficients(1, d);
+  EXPECT_DOUBLE_EQ(c1.uu, 1);
+  EXPECT_DOUBLE_EQ(c1.u, 1);
+  EXPECT_DOUBLE_EQ(c1.p, 1);
+  EXPECT_NEAR(mixtureDiffusivity(1, d, 5.0, 1e-3), 5.0, 1e-14);
+  // lambda = 1: the reduced model, nu_s alpha_s + nu_f alpha_f (P-Eqs. 59-61).
+  EXPECT_NEAR(mixtureDiffusivity(0.3, {}, 5.0, 1e-3), 0.3 * 5.0 + 0.7 * 1e-3, 1e-14);
+}
+
+// P-Eq. 44 equals the diffusivity for isotropic drifts, P-Eq. 46 inverts it, and the paper's fit
+// P-Eq. 45 (Lambda0 = 4.99, chi = 0.5, xi = 0.97) follows P-Eq. 44 at alpha_s = 0.25 with
+// nu_f = 1e-3 m2/s: 2.04, 1.30, 0.69, 0.26 against 2.00, 1.25, 0.71, 0.31 at lambda 0.5, 1, 2, 5.
+TEST(DriftAlgebra, PaperMixtureViscosity) {
+  const double nuS = 4.99, nuF = 1e-3, a = 0.25;
+  const double lambdas[] = {0.5, 1, 2, 5};
+  const double eq44[] = {2.00, 1.25, 0.71, 0.31};
+  for (int i = 0; i < 4; ++i) {
+    const double l = lambdas[i];
+    const double m = isotropicMixtureViscosity(a, l, nuS, nuF);
+    EXPECT_NEAR(m, mixtureDiffusivity(a, {l, l, 1}, nuS, nuF), 1e-12);
+    EXPECT_NEAR(m, eq44[i], 0.006) << "lambda " << l;
+    EXPECT_NEAR(lambdaFromMixtureViscosity(a, m, nuS, nuF), l, 1e-10);
+    const double fit = nuS * (1 - 0.97 * std::tanh(std::sqrt(l)));
+    EXPECT_NEAR(fit, m, 0.06) << "fit against P-Eq. 44 at lambda " << l;
+  }
+}
+
+// u_m -> u_s, u_f -> alpha_s u_s + alpha_f u_f is the identity; pressures p_s = p_m / Lambda_p.
+TEST(DriftAlgebra, ReconstructionRoundTrip) {
+  const double a = 0.45;
+  const Drifts d{1.3, 0.6, 0.9};
+  const Vec2 um{1.2, -0.4};
+  const Vec2 back = mixtureVelocity(a, solidVelocity(a, d, um), fluidVelocity(a, d, um));
+  EXPECT_NEAR(back.x, um.x, 1e-14);
+  EXPECT_NEAR(back.y, um.y, 1e-14);
+  const double pm = 3.0;
+  EXPECT_NEAR(a * solidPressure(a, d, pm) + (1 - a) * fluidPressure(a, d, pm), pm, 1e-14);
+}
+
+// P-Eq. 19: zero for gamma = 1 or lambda = 1, else -(1-gamma)^2/gamma C (lambda - 1) u_s.
+TEST(DriftAlgebra, DragResidual) {
+  const Vec2 us{0.5, 0.2};
+  EXPECT_DOUBLE_EQ(dragResidual(1.0, 7.5, {1.4, 0.7, 1}, us).x, 0);
+  EXPECT_DOUBLE_EQ(dragResidual(0.4, 7.5, {1, 1, 1}, us).y, 0);
+  const Vec2 r = dragResidual(0.4, 7.5, {1.4, 0.7, 1}, us);
+  EXPECT_NEAR(r.x, -0.36 / 0.4 * 7.5 * 0.4 * 0.5, 1e-14);
+  EXPECT_NEAR(r.y, -0.36 / 0.4 * 7.5 * -0.3 * 0.2, 1e-14);
+}
+
+// The regularised Coulomb-viscoplastic stress nu_se |D| tends to the yield stress at high rates
+// and the viscosity to nu_s + m_y tau_ys at rest; the pore liquid's law is OpenFOAM's
+// HerschelBulkley with its cap.
+TEST(DriftAlgebra, Rheologies) {
+  const SolidRheology s{0.03, 0.5, 0.2, 100};
+  const double p = 4.0, tauY = 0.2 + 0.5 * p;
+  EXPECT_NEAR(solidViscosity(s, 0.0, p), 0.03 + 100 * tauY, 1e-12);
+  EXPECT_NEAR(solidViscosity(s, 1e-12, p), 0.03 + 100 * tauY, 1e-6);
+  const double rate = 50;  // m_y |D| = 5000: exp(-x) negligible
+  EXPECT_NEAR(solidViscosity(s, rate, p) * rate, 0.03 * rate + tauY, 1e-12);
+  EXPECT_NEAR(solidViscosity(s, 1, -3.0), 0.03 + 0.2 * -std::expm1(-100.0), 1e-12);  // p < 0: cohesion only
+
+  const FluidRheology hb{0.03, 4.279e-3, 0.479, 10};
+  EXPECT_NEAR(fluidViscosity(hb, 2.0), (0.03 + 4.279e-3 * std::pow(2.0, 0.479)) / 2.0, 1e-15);
+  EXPECT_DOUBLE_EQ(fluidViscosity(hb, 1e-9), 10);
+  EXPECT_NEAR(fluidViscosity({0, 1e-6, 1, 0}, 3.0), 1e-6, 1e-20);
+}
+
+}  // namespace
