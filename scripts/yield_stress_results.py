@@ -4,11 +4,17 @@ the quick HB&P and B&P under the verified default and under the paper-faithful v
 
 usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out results/yield_stress]
                                                [--skip-grains] [--skip-mixtures]
+                                               [--skip-beds | --only-beds]
 
 1. Single grain (tests/coupling/run_yield_sphere.py, the coupling.yield_sphere.* tests) with
    each closure: its settling speed in the paper's Bingham liquid, in the paper's HB liquid, and
    in Bingham liquids at Y = 0.12 and 0.20; each check's measured value, reference, error,
    tolerance and verdict go to summary.json "closures".
+1b. Non-Newtonian fixed bed and power-law sphere (tests/coupling/run_ergun.py --liquid
+   powerlaw|bingham, run_yield_sphere.py --liquid powerlaw) with each closure: the bed gradient
+   against Christopher & Middleman, the Bingham bed's zero-velocity gradient against the
+   threshold, the grain's speed against the X(n) drag; summary.json "closures" (bed_*, sphere_*).
+   --only-beds runs just these (about 2 min).
 2. Mixtures at the quick tier (`suite.py --tier quick --scenes HB+P,B+P,W+P`), then variants of
    HB+P and B+P on the same settled samples (a copy of the run, its dictionaries edited with
    suite.edit_dict, `./Allrun 1 dem`):
@@ -128,6 +134,85 @@ def grain_checks(work, build):
     return out
 
 
+def result_lines(text, tag):
+    """The RESULT <tag> key=value lines of a test driver's output, as dicts of floats."""
+    out = []
+    for m in re.finditer(rf"^RESULT {tag} (.*)$", text, re.M):
+        out.append({k: (float(v) if re.fullmatch(r"[-+0-9.eE]+", v) else v)
+                    for k, v in (kv.split("=") for kv in m.group(1).split())})
+    return out
+
+
+def check(measured, reference, tolerance, unit, source, error=None):
+    error = measured / reference - 1 if error is None else error
+    return {"measured": measured, "reference": reference, "error": error, "tolerance": tolerance,
+            "passes": abs(error) <= tolerance, "unit": unit, "reference_source": source}
+
+
+def failed_check(reference, tolerance, unit, source, why):
+    return {"measured": None, "reference": reference, "error": None, "tolerance": tolerance,
+            "passes": False, "unit": unit, "reference_source": source, "failed": why}
+
+
+def why(r):
+    """A failed driver's reason: the solver's exception if it threw, else its last line."""
+    text = r.stdout + r.stderr
+    return ([ln.strip() for ln in text.splitlines() if "what():" in ln][-1:] or
+            text.strip().splitlines()[-1:])
+
+
+def bed_sphere_checks(work, build, closures):
+    """The fixed bed in a power-law and a Bingham liquid (tests/coupling/run_ergun.py --liquid,
+    GidaspowDrag) and a lone grain in the power-law liquid (run_yield_sphere.py --liquid
+    powerlaw) with each closure; merged into closures[<closure>]["checks"]."""
+    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+    common = ["--solver", os.path.join(build, "bin/mixflowCoupled"), "--blockmesh", "blockMesh",
+              "--reference", os.path.join(ROOT, "tests/reference")]
+    cm_src = ("Christopher & Middleman 1965 Blake-Kozeny power-law form "
+              "(tests/reference/powerlaw_bed_christopher_middleman.csv); GidaspowDrag bed")
+    th_src = ("capillary-bundle threshold 12.5 (1 - eps) tau_y / (eps d) "
+              "(tests/reference/yield_stress_bed_threshold.csv; Chevalier et al. 2013's coefficient "
+              "not reachable); intercept of a line through G(U) at U = 5e-6, 1e-5, 2e-5 m/s")
+    x_src = ("creeping power-law sphere drag with X(n) (tests/reference/"
+             "powerlaw_sphere_drag_correction.csv) x Di Felice finite-Re factor")
+    for cl in ("slip", "resolved"):
+        checks = closures.setdefault(cl, {"checks": {}})["checks"]
+        r = run([sys.executable, os.path.join(ROOT, "tests/coupling/run_ergun.py")] + common +
+                ["--workdir", os.path.join(work, "beds", f"powerlaw_{cl}"), "--liquid", "powerlaw",
+                 "--drag-viscosity", cl], env=env)
+        rows = result_lines(r.stdout, "christopher_middleman")
+        if rows:
+            for row in rows:
+                checks[f"bed_powerlaw_U{row['U']:g}_christopher_middleman"] = check(
+                    row["measured"], row["reference"], 0.1, "Pa/m", cm_src)
+        else:
+            with open(os.path.join(ROOT, "tests/reference/powerlaw_bed_christopher_middleman.csv")) as f:
+                for row in csv.DictReader(x for x in f if not x.startswith("#")):
+                    checks[f"bed_powerlaw_U{float(row['U_superficial_m_s']):g}_christopher_middleman"] = \
+                        failed_check(float(row["dpdx_CM_Pa_m"]), 0.1, "Pa/m", cm_src, why(r))
+        r = run([sys.executable, os.path.join(ROOT, "tests/coupling/run_ergun.py")] + common +
+                ["--workdir", os.path.join(work, "beds", f"bingham_{cl}"), "--liquid", "bingham",
+                 "--drag-viscosity", cl], env=env)
+        rows = result_lines(r.stdout, "threshold")
+        if rows:
+            row = rows[0]
+            checks["bed_bingham_threshold"] = check(row["measured"], row["reference"], 0.2, "Pa/m",
+                                                    th_src)
+            checks["bed_bingham_threshold"]["flow_curve_slope"] = row["slope"]
+            checks["bed_bingham_threshold"]["ergun_slope_mu_p"] = row["ergun_slope"]
+        r = run([sys.executable, os.path.join(ROOT, "tests/coupling/run_yield_sphere.py")] +
+                common + ["--workdir", os.path.join(work, "grains"), "--liquid", "powerlaw",
+                          "--closure", cl], env=env)
+        rows = result_lines(r.stdout, "powerlaw_sphere")
+        ref = float(re.search(r"reference speed (\S+) m/s", r.stdout).group(1))
+        if rows:
+            checks["sphere_powerlaw_speed"] = check(rows[0]["measured"], ref, 0.1, "m/s", x_src)
+            checks["sphere_powerlaw_speed"]["closure_prediction"] = rows[0]["closure_prediction"]
+        else:
+            checks["sphere_powerlaw_speed"] = failed_check(ref, 0.1, "m/s", x_src, why(r))
+    return closures
+
+
 def series(path):
     with open(path) as f:
         return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
@@ -239,6 +324,10 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress"))
     ap.add_argument("--skip-grains", action="store_true")
     ap.add_argument("--skip-mixtures", action="store_true")
+    ap.add_argument("--skip-beds", action="store_true",
+                    help="skip the non-Newtonian bed and power-law sphere checks")
+    ap.add_argument("--only-beds", action="store_true",
+                    help="only the non-Newtonian bed and power-law sphere checks (about 2 min)")
     ap.add_argument("--packing", help="comma-separated FRACTION:SETTLE_FRICTION (stage 3)")
     ap.add_argument("--reference-work", default=os.path.join(ROOT, "runs", "reference"),
                     help="the reference-tier suite run at the cases' own solidFraction")
@@ -254,8 +343,16 @@ def main():
                                "(passes the single-grain checks), resolved for a Newtonian one "
                                "(identical there)")
     summary["command"] = "python3 scripts/yield_stress_results.py"
+    if a.only_beds:
+        a.skip_grains = a.skip_mixtures = True
     if not a.skip_grains:
+        beds = {cl: {k: v for k, v in c["checks"].items() if k.startswith(("bed_", "sphere_"))}
+                for cl, c in summary.get("closures", {}).items()}
         summary["closures"] = grain_checks(work, build)
+        for cl, kept in beds.items():
+            summary["closures"].setdefault(cl, {"checks": {}})["checks"].update(kept)
+    if not a.skip_beds:
+        summary["closures"] = bed_sphere_checks(work, build, summary.get("closures", {}))
     if not a.skip_mixtures:
         summary["paper_faithful"] = {
             "tier": "quick", "variants": {k: v for k, v in VARIANTS.items()},
