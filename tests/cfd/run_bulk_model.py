@@ -1,0 +1,203 @@
+#!/usr/bin/env python3
+"""Verification of mixflowBulkFoam, the quasi two-phase bulk model (docs/bulk_model.md), on a
+2-D 0.1 x 0.1 m column in a 0.6 x 0.15 m channel (5 mm cells). Scenarios (--scenario):
+
+liquid-limit  solid fraction 0 with the Bingham pore liquid of the yield-slump test: the model is
+              then the pore liquid alone, so the run must equal mixflowFoam's run of the same
+              liquid (content liquid): front and kinetic energy at every row within 1e-6
+              relative (solver tolerance; the viscosity is evaluated by another formula).
+newtonian     lambda = 1, alpha_s 0.6, no yield stress (tanPhi 0, cohesion 0), nu_s 2e-3 m2/s:
+              the reduced model (paper Eqs. 59-61) is a Newtonian liquid of density rho* and
+              viscosity rho* (alpha_s nu_s + alpha_f nu_f): equal to mixflowFoam's run of that
+              liquid within 1e-6 relative; liquid volume balance <= 1e-6.
+cohesive-arrest  lambda = 1, alpha_s 0.6, tanPhi 0 and a cohesion tau_c: the mixture's stress is
+              alpha_s tau_c rho*/rho_s (the paper's kinematic weighting), a Bingham slump of yield
+              stress tau_eff = 50 Pa; its arrested length must be within 10 % of the shallow
+              theory h(x) = sqrt(2 tau_eff (x_f - x) / (rho* g)) holding the column's area, and
+              the kinetic energy must never exceed the potential energy released (no restart).
+bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
+              (exit 2, message naming file, entry and allowed range) before any file is written.
+"""
+
+import argparse
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.dont_write_bytecode = True
+import foamcase as fc  # noqa: E402
+import run_liquid_cases as lc  # noqa: E402
+
+G = 9.81
+RHO_S = 2500.0
+BINGHAM = ("rheology Bingham; density 1000; yieldStress 17; plasticViscosity 1.5; "
+           "viscosityCap 1e4; surfaceTension 0;")
+WATER = "rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0;"
+GEOMETRY = ("sample { length 0.1; height 0.1; width 0.1; solidFraction 0.6; }\n"
+            "channel { length 0.6; height 0.15; }\n")
+PARTICLES = f"particles {{ diameter 0.024; density {RHO_S:g}; }}\n"
+CFD = "dimensions 2;\ncellSize 0.005;\n"
+
+
+def bulk_case(work, name, liquid, bulk_props, end, write_interval=0.1, cfd=CFD):
+    """A mixture scene run by the bulk model (cfdDict mixtureModel bulk)."""
+    case = os.path.join(work, name)
+    lc.write_case(case, "content mixture;\n" + GEOMETRY + PARTICLES + f"liquid {{ {liquid} }}\n",
+                  cfd + "mixtureModel bulk;\n", end, write_interval)
+    hdr = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
+    with open(os.path.join(case, "system/demDict"), "w") as f:
+        f.write(hdr % "demDict")
+    with open(os.path.join(case, "constant/bulkProperties"), "w") as f:
+        f.write(hdr % "bulkProperties" + bulk_props)
+    return case
+
+
+def liquid_case(work, name, liquid, end, write_interval=0.1):
+    case = os.path.join(work, name)
+    lc.write_case(case, "content liquid;\n" + GEOMETRY + f"liquid {{ {liquid} }}\n", CFD, end,
+                  write_interval)
+    return case
+
+
+def run(a, case, solver):
+    args = argparse.Namespace(**vars(a))
+    args.solver = solver
+    return lc.run_case(args, case)
+
+
+def compare(bulk, ref, label, tol=1e-6):
+    """Front and kinetic energy row by row (same adaptive steps if the runs agree)."""
+    ok = lc.check(len(bulk) == len(ref), f"{label}: {len(bulk)} rows against {len(ref)}")
+    worst = (0.0, "", 0.0)
+    for b, r in zip(bulk, ref):
+        for key in ("front_bed_m", "kinetic_energy_J"):
+            scale = max(abs(r[key]), 1e-12 if key == "front_bed_m" else 1e-9 * ref[0]["potential_energy_J"])
+            err = abs(b[key] - r[key]) / scale
+            if err > worst[0]:
+                worst = (err, key, r["time_s"])
+    ok &= lc.check(worst[0] <= tol, f"{label}: largest relative difference {worst[0]:.2e} "
+                   f"({worst[1]} at t = {worst[2]:g} s; <= {tol:g}); front at the end "
+                   f"{bulk[-1]['front_bed_m']:.5f} m against {ref[-1]['front_bed_m']:.5f} m")
+    return ok
+
+
+def liquid_limit(a, work):
+    bulk = bulk_case(work, "bulk_alpha0", BINGHAM, "solidFraction 0;\n", 0.5)
+    ref = liquid_case(work, "liquid_bingham", BINGHAM, 0.5)
+    return compare(run(a, bulk, a.bulk_solver), run(a, ref, a.solver), "alpha_s = 0 vs mixflowFoam")
+
+
+def newtonian(a, work):
+    alpha, nu_s, nu_f, rho_f = 0.6, 2e-3, 1e-6, 1000.0
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    mu = rho * (alpha * nu_s + (1 - alpha) * nu_f)
+    bulk = bulk_case(work, "bulk_newtonian", WATER,
+                     f"solid {{ viscosity {nu_s}; tanPhi 0; cohesion 0; }}\n", 0.5)
+    ref = liquid_case(work, "liquid_newtonian",
+                      f"rheology Newtonian; density {rho:.10g}; viscosity {mu:.10g}; "
+                      "surfaceTension 0;", 0.5)
+    sb = run(a, bulk, a.bulk_solver)
+    ok = compare(sb, run(a, ref, a.solver), f"lambda = 1, Newtonian solid vs liquid of "
+                 f"rho {rho:g} kg/m3, mu {mu:.4g} Pa s")
+    bal = max(abs(r["volume_balance"]) for r in sb)
+    ok &= lc.check(bal <= 1e-6, f"mixture volume balance max {bal:.2e} (<= 1e-6)")
+    return ok
+
+
+def cohesive_arrest(a, work):
+    alpha, rho_f, tau_eff, mu_p, cap = 0.6, 1000.0, 50.0, 1.5, 1e4
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    # Kinematic stress alpha_s nu_se |D| times rho*: tau_eff = rho* alpha_s tau_c / rho_s.
+    tau_c = tau_eff * RHO_S / (rho * alpha)
+    nu_s = mu_p / (rho * alpha)
+    m_y = cap / tau_eff  # viscosity at rest rho* alpha_s (nu_s + m_y tau_c / rho_s) ~ cap
+    case = bulk_case(work, "bulk_cohesive", WATER,
+                     f"solid {{ viscosity {nu_s:.10g}; tanPhi 0; cohesion {tau_c:.10g}; "
+                     f"regularisation {m_y:g}; }}\n", 4.0, 1.0)
+    s = run(a, case, a.bulk_solver)
+    pe0 = s[0]["potential_energy_J"]
+    excess = max(r["kinetic_energy_J"] - (pe0 - r["potential_energy_J"]) for r in s)
+    ok = lc.check(excess <= 1e-4 * pe0, f"E_k - E_p released max {excess / pe0:+.2e} E_p0 (<= 1e-4)")
+    end = s[-1]
+    ok &= lc.check(end["kinetic_energy_J"] <= 1e-6 * pe0,
+                   f"arrested at t = {end['time_s']:g} s: E_k {end['kinetic_energy_J'] / pe0:.2e} "
+                   "E_p0 (<= 1e-6)")
+    xf_theory = lc.arrest_length(tau_eff, rho)
+    xf = end["front_bed_m"]
+    err = (xf - xf_theory) / xf_theory
+    ok &= lc.check(abs(err) <= 0.10, f"arrested front {xf:.4f} m against the shallow theory "
+                   f"{xf_theory:.4f} m for tau_eff {tau_eff:g} Pa, rho* {rho:g}: {100 * err:+.1f} % "
+                   "(<= 10 %)")
+    return ok
+
+
+BAD = [
+    ("solid fraction above packing", "solidFraction 0.7;\n",
+     ["constant/bulkProperties", "solidFraction", "[0, 0.64]"]),
+    ("unknown solid entry", "solid { frictionAngle 30; }\n",
+     ["constant/bulkProperties", "frictionAngle", "tanPhi"]),
+    ("drift making alpha_s + lambda alpha_f vanish", "drifts { lambdaU -1.6; }\n",
+     ["constant/bulkProperties", "drifts.lambdaU", "-1.475"]),
+    ("yield pressure word", "solid { yieldPressure effective; }\n",
+     ["constant/bulkProperties", "yieldPressure", "buoyancyReduced"]),
+]
+
+
+def bad_input(a, work):
+    ok = True
+    for name, props, expected in BAD:
+        case = bulk_case(work, "bad_" + re.sub(r"\W+", "_", name), WATER, props, 1.0)
+        ok &= refused(a, case, name, expected)
+    # The bulk model needs a mixture.
+    case = liquid_case(work, "bad_liquid_bulk", WATER, 1.0)
+    with open(os.path.join(case, "system/cfdDict"), "a") as f:
+        f.write("mixtureModel bulk;\n")
+    ok &= refused(a, case, "mixtureModel bulk for a liquid", ["system/cfdDict", "mixtureModel",
+                                                            "content is liquid"])
+    return ok
+
+
+def refused(a, case, name, expected):
+    res = subprocess.run([a.prepare, "-case", case, "-check"], capture_output=True, text=True)
+    msg = res.stdout + res.stderr
+    missing = [f for f in expected if f not in msg]
+    res2 = subprocess.run([a.prepare, "-case", case], capture_output=True, text=True)
+    wrote = os.path.exists(os.path.join(case, "0")) or os.path.exists(
+        os.path.join(case, "system/blockMeshDict"))
+    good = res.returncode == 2 and res2.returncode == 2 and not missing and not wrote
+    last = msg.strip().splitlines()[-1] if msg.strip() else ""
+    ok = lc.check(good, f"{name}: exit {res.returncode}; {last}")
+    if not good:
+        print(f"       expected exit 2, fragments {missing} missing, files written: {wrote}")
+    return ok
+
+
+SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian,
+             "cohesive-arrest": cohesive_arrest, "bad-input": bad_input}
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--scenario", required=True, choices=sorted(SCENARIOS))
+    p.add_argument("--prepare", required=True)
+    p.add_argument("--solver", required=True, help="mixflowFoam (the reference runs)")
+    p.add_argument("--bulk-solver", required=True, help="mixflowBulkFoam")
+    p.add_argument("--blockmesh", default="blockMesh")
+    p.add_argument("--decomposepar", default="decomposePar")
+    p.add_argument("--reconstructpar", default="reconstructPar")
+    p.add_argument("--mpiexec", default="mpirun --allow-run-as-root --oversubscribe")
+    p.add_argument("--workdir", required=True)
+    a = p.parse_args()
+    work = os.path.join(os.path.abspath(a.workdir), a.scenario)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    ok = SCENARIOS[a.scenario](a, work)
+    print("PASS" if ok else "FAIL", flush=True)
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
