@@ -277,23 +277,35 @@ def bulk_properties_text(path, drifts, source, solid_fraction=None):
     return edit_dict(text, {"drifts": entries})[0]
 
 
-def write_target(target, res, source_arg, json_path=None):
-    """Checks TARGET and the drifts against the bulk model's range, then writes
-    TARGET/constant/bulkProperties and the JSON; returns their paths. Nothing is written when a
-    check fails (InputError)."""
+def check_target(target):
+    """TARGET has constant/ and a readable bulkProperties (or none); returns the latter's tree."""
     const = os.path.join(target, "constant")
     if not os.path.isdir(const):
         raise InputError(f"{target}: no constant/ directory (--target is a case directory; "
                          "bulkProperties goes into its constant/)")
     path = os.path.join(const, "bulkProperties")
+    if not os.path.exists(path):
+        return {}
     try:
-        tree = {}
-        if os.path.exists(path):
-            with open(path) as f:
-                tree = parse_dict(f.read())
-        alpha, alpha_from = _solid_fraction(target, tree, res)
-    except (DictError, ValueError) as e:
+        with open(path) as f:
+            tree = parse_dict(f.read())
+    except DictError as e:
         raise InputError(f"{path}: {e}") from None
+    if "drifts" in tree and not isinstance(tree["drifts"], dict):
+        raise InputError(f"{path}: 'drifts' is an entry, not a block")
+    return tree
+
+
+def write_target(target, res, source_arg, json_path=None):
+    """Checks TARGET and the drifts against the bulk model's range, then writes
+    TARGET/constant/bulkProperties and the JSON; returns their paths. Nothing is written when a
+    check fails (InputError)."""
+    tree = check_target(target)
+    path = os.path.join(target, "constant", "bulkProperties")
+    try:
+        alpha, alpha_from = _solid_fraction(target, tree, res)
+    except ValueError as e:
+        raise InputError(f"{path}: solidFraction: {e}") from None
     lo = (DRIFT_DENOMINATOR_MIN - alpha) / (1 - alpha) if alpha < 1 else -DRIFT_MAX
     drifts = {q: r["value"] for q, r in res["drifts"].items()}
     for q, v in drifts.items():
@@ -338,9 +350,8 @@ def main(argv=None):
     ap.add_argument("--json", help="JSON of the result (default next to bulkProperties)")
     a = ap.parse_args(argv)
     try:
-        if a.target and not os.path.isdir(os.path.join(a.target, "constant")):
-            raise InputError(f"{a.target}: no constant/ directory (--target is a case directory; "
-                             "bulkProperties goes into its constant/)")
+        if a.target:
+            check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
         print(table(res))
