@@ -17,6 +17,7 @@ postProcessing/mixture/mixture.h5:
   - lambda_u and lambda_w also as the weighted least-squares slope of u_f on u_s over the same bins
     (weights alpha_s (1 - alpha_s) times the bin's particle samples): a ratio of sums, which small
     |u_s| cannot blow up.
+load() (the file's arrays) and wls_slope() are shared with scripts/calibrate_drifts.py.
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
 
@@ -53,13 +54,35 @@ def quantiles(v):
             "p90": float(np.quantile(v, 0.9)), "bins": int(v.size)}
 
 
-def summarise(h5):
+def load(h5):
+    """The arrays of a mixflowExtract file (mixture_extract/README.md), each (window, y bin, x bin)
+    but for the windows: {"fields": name -> float array (NaN where masked), "valid": name -> bool
+    (the /masks/valid_<name> of the fields that have one), "counts": name -> array, "windows":
+    name -> 1-d array, "attrs": root attributes}."""
     with h5py.File(h5, "r") as h:
-        f = {k: h["fields/" + k][()] for k in h["fields"].keys()}
-        valid = {k[len("valid_"):]: h["masks/" + k][()].astype(bool) for k in h["masks"].keys()
-                 if k.startswith("valid_")}
-        samples = h["counts/particle_samples"][()] if "counts/particle_samples" in h else None
-        windows = int(h["windows/t0"].shape[0])
+        out = {"fields": {k: h["fields/" + k][()] for k in h["fields"].keys()},
+               "valid": {k[len("valid_"):]: h["masks/" + k][()].astype(bool)
+                         for k in h["masks"].keys() if k.startswith("valid_")},
+               "counts": {k: h["counts/" + k][()] for k in h["counts"].keys()} if "counts" in h
+               else {},
+               "windows": {k: h["windows/" + k][()] for k in h["windows"].keys()},
+               "attrs": {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h.attrs.items()}}
+    return out
+
+
+def wls_slope(x, y, w):
+    """Weighted least-squares slope of y on x through the origin: sum w x y / sum w x^2 (None
+    when the denominator vanishes). A bin's ratio y/x enters with weight w x^2, so bins of small
+    |x| cannot blow it up."""
+    den = float(np.sum(w * x * x))
+    return float(np.sum(w * x * y)) / den if den > 0 else None
+
+
+def summarise(h5):
+    d = load(h5)
+    f, valid = d["fields"], d["valid"]
+    samples = d["counts"].get("particle_samples")
+    windows = int(d["windows"]["t0"].shape[0])
     a, us, ws = f["alpha_s"], f["u_s"], f["w_s"]
     speed = np.sqrt(np.nan_to_num(us) ** 2 + np.nan_to_num(ws) ** 2)
     flowing = (np.nan_to_num(a) >= 0.1) & (speed >= 0.05)
@@ -73,8 +96,7 @@ def summarise(h5):
     w = np.nan_to_num(a * (1 - a)) * (np.nan_to_num(samples) if samples is not None else 1.0)
     for lam, fs, ff in (("lambda_u", us, f["u_f"]), ("lambda_w", ws, f["w_f"])):
         m = flowing & np.isfinite(fs) & np.isfinite(ff)
-        den = float(np.sum(w[m] * fs[m] ** 2))
-        out[lam + "_wls_slope"] = float(np.sum(w[m] * ff[m] * fs[m]) / den) if den > 0 else None
+        out[lam + "_wls_slope"] = wls_slope(fs[m], ff[m], w[m])
     return out
 
 

@@ -31,14 +31,16 @@ def write(path, text):
 
 
 def scene(case, L=0.3, H=0.12, W=0.06, channel=(0.8, 0.4), d=0.012, end_time=0.1, write_interval=0.01,
-          content="particles", liquid_density=None):
-    """liquid_density: writes liquid { density ...; } (a mixture scene's liquid)."""
+          content="particles", liquid_density=None, particle_density=None):
+    """liquid_density: writes liquid { density ...; } (a mixture scene's liquid); particle_density:
+    particles.density (else the scene's default)."""
     liquid = f"liquid {{ density {liquid_density}; }}\n" if liquid_density is not None else ""
+    rho_s = f" density {particle_density};" if particle_density is not None else ""
     write(os.path.join(case, "constant/sceneProperties"),
           "FoamFile { version 2.0; format ascii; class dictionary; object sceneProperties; }\n"
           f"content {content};\nsample {{ length {L}; height {H}; width {W}; }}\n"
           f"channel {{ length {channel[0]}; height {channel[1]}; sideWalls periodic; }}\n"
-          f"particles {{ diameter {d}; }}\n" + liquid)
+          f"particles {{ diameter {d};{rho_s} }}\n" + liquid)
     write(os.path.join(case, "system/demDict"),
           "youngModulusFactor 1e-4;\nsampleInterval 0.01;\n")
     write(os.path.join(case, "system/controlDict"),
@@ -173,4 +175,55 @@ def drift_case(case, snap_times, fluid_times, partners=None, extract_dict="", co
                                  np.zeros(len(C))])
             p = np.full(len(C), 500.0)
         foam_time(case, "%.10g" % t, C, Vc, U, p, alpha, np.full(len(C), 0.45))
+    finish(case)
+
+
+def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, W=0.06, d=0.012,
+                   H=0.12, rho_s=2500.0, rho_f=1000.0):
+    """A finished mixture case with a prescribed value in every bin: arrays (window, y bin, x bin)
+    us, ws, ps (particle velocity, granular pressure p_s in Pa) and uf, wf, pf (liquid velocity,
+    pressure in Pa). One snapshot and one fluid time per window (at its middle; windows of WINDOW
+    s from 0), grid nx x ny bins of dx x dy from the origin (system/extractDict). Each bin holds
+    3 x 3 x 4 particles (d 0.012) wholly inside it and one saturated fluid cell (eps_f 0.45) at
+    its centre, so the extractor's bin values are the prescribed ones exactly: the contact
+    stress C_i = -ps V_bin / 36 per normal component (p_s = ps), the kinetic term dumped with it.
+    Sample height H (the calibration's flowing criterion), channel 1 x 0.5 m."""
+    us = np.asarray(us, float)
+    nw, ny, nx = us.shape
+    if os.path.exists(case):
+        import shutil
+        shutil.rmtree(case)
+    end = nw * window
+    scene(case, L=0.3, H=H, W=W, channel=(1.0, 0.5), d=d, end_time=end, write_interval=window,
+          content="mixture", liquid_density=rho_f, particle_density=rho_s)
+    write(os.path.join(case, "system/extractDict"),
+          f"grid {{ x (0 {nx * dx:.10g} {nx}); y (0 {ny * dy:.10g} {ny}); }}\n"
+          f"windows {{ start 0; end {end:.10g}; width {window:.10g}; }}\nfluid {{ source openfoam; }}\n")
+    off = np.array([1, 3, 5]) / 6.0
+    local = np.stack(np.meshgrid(off * dx, off * dy, (np.arange(4) + 0.5) * W / 4, indexing="ij"),
+                     -1).reshape(-1, 3)
+    jj, ii = np.meshgrid(np.arange(ny), np.arange(nx), indexing="ij")
+    corner = np.column_stack([ii.ravel() * dx, jj.ravel() * dy, np.zeros(ii.size)])
+    x = (corner[:, None, :] + local[None, :, :]).reshape(-1, 3)  # bin-major, 36 per bin
+    per = len(local)
+    n = len(x)
+    r = np.full(n, d / 2)
+    m = rho_s * np.pi / 6 * d**3 * np.ones(n)
+    vbin = dx * dy * W
+    C = np.column_stack([ii.ravel() * dx + dx / 2, jj.ravel() * dy + dy / 2, np.full(ii.size, W / 2)])
+    entries = []
+    for k in range(nw):
+        t = (k + 0.5) * window
+        vx = np.repeat(us[k].ravel(), per)
+        vy = np.repeat(np.asarray(ws, float)[k].ravel(), per)
+        c = np.repeat(-np.asarray(ps, float)[k].ravel() * vbin / per, per)
+        st = np.column_stack([c - m * vx**2, c - m * vy**2, c, -m * vx * vy, np.zeros(n), np.zeros(n)])
+        name = f"particles/particles_{k}.vtk"
+        vtk(os.path.join(case, "VTK", name), x, np.column_stack([vx, vy, np.zeros(n)]), m, r, st)
+        entries.append((name, t))
+        U = np.column_stack([np.asarray(uf, float)[k].ravel(), np.asarray(wf, float)[k].ravel(),
+                             np.zeros(len(C))])
+        foam_time(case, "%.10g" % t, C, np.full(len(C), vbin), U, np.asarray(pf, float)[k].ravel(),
+                  np.ones(len(C)), np.full(len(C), 0.45))
+    series(case, entries)
     finish(case)

@@ -1,0 +1,116 @@
+"""calibrate_drifts.py on a synthetic extraction with known drifts (drift_data.py): the wls
+estimator recovers them within 4 standard errors, the ratio median of lambda_u is pulled low by
+the slow bins, the bootstrap 16-84 % interval matches the least-squares standard error, the
+flowing criterion drops the slow bins, and the command writes bulkProperties and its JSON.
+
+usage: test_calibrate_recovery.py MIXFLOWEXTRACT WORKDIR"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(HERE, "..", "mixture_extract"))
+import calibrate_drifts as cd  # noqa: E402
+import drift_data as dd  # noqa: E402
+from mixture_lambdas import load  # noqa: E402
+from suite import read_dict, unquote  # noqa: E402
+from synthcase import checker  # noqa: E402
+
+
+def main():
+    exe, work = sys.argv[1], sys.argv[2]
+    failures = []
+    check = checker(failures)
+    case = os.path.join(work, "dem_case")
+    t = dd.make(case, exe)
+    h5 = os.path.join(case, cd.H5_IN_CASE)
+
+    # The case maker's bins are exact, so the truth below is what the extractor measured.
+    f = load(h5)["fields"]
+    k = {"us": "u_s", "ws": "w_s", "uf": "u_f", "wf": "w_f", "pf": "p_f"}
+    err = max(float(np.max(np.abs(f[k[n]] - t[n]))) for n in k)
+    check(err < 1e-6, f"extracted bins equal the prescribed values: max |diff| {err:.2e} < 1e-6")
+    ps_err = float(np.max(np.abs(f["p_s"] / t["ps"] - 1)))
+    check(ps_err < 1e-9, f"p_s = prescribed granular pressure: max rel. diff {ps_err:.2e} < 1e-9")
+
+    res = cd.calibrate(case)
+    n = t["us"].size
+    cases = (("lambda_u", dd.LU, dd.SIGMA_U, t["us"]), ("lambda_w", dd.LW, dd.SIGMA_W, t["ws"]),
+             ("lambda_p", dd.LP, dd.SIGMA_P, t["ps"] / dd.RHO_S))
+    for q, true, sigma, x in cases:
+        r = res["drifts"][q]
+        check(r["samples"] == n, f"{q}: all {n} (window, bin) samples flow and are valid "
+                                 f"(got {r['samples']})")
+        # Equal weights (36 particles in every bin): SE of the slope = sigma / sqrt(sum x^2).
+        se = sigma / math.sqrt(float(np.sum(x * x)))
+        v = r["wls"]["value"]
+        check(abs(v - true) <= 4 * se, f"{q}: wls {v:.4f} recovers {true} within 4 SE = "
+                                       f"{4 * se:.4f} (off by {abs(v - true):.4f})")
+        half = 0.5 * (r["wls"]["p84"] - r["wls"]["p16"])
+        check(0.6 * se <= half <= 1.6 * se,
+              f"{q}: bootstrap 16-84 % half-width {half:.4f} within [0.6, 1.6] x the "
+              f"least-squares SE {se:.4f} (ratio {half / se:.2f})")
+        print(f"     {q}: wls {v:.4f} [{r['wls']['p16']:.4f}, {r['wls']['p84']:.4f}], median "
+              f"{r['median']['value']:.4f} [{r['median']['p16']:.4f}, {r['median']['p84']:.4f}]")
+    ru = res["drifts"]["lambda_u"]
+    bias = dd.LU - ru["median"]["value"]
+    # The slow bins' ratios carry -0.31 sigma / u_s (about -0.4): the median lands low.
+    check(bias >= 0.03, f"lambda_u: the ratio median {ru['median']['value']:.4f} is biased low by "
+                        f"{bias:.4f} >= 0.03, while wls is off by "
+                        f"{abs(ru['wls']['value'] - dd.LU):.4f}")
+    check(ru["median"]["p84"] < dd.LU, f"lambda_u: the median's 16-84 % interval "
+                                       f"[{ru['median']['p16']:.4f}, {ru['median']['p84']:.4f}] "
+                                       f"excludes the true {dd.LU}")
+    sel = res["selection"]
+    check(abs(sel["flowing_speed_m_s"] - 0.05 * math.sqrt(9.81 * 0.12)) < 1e-12,
+          f"flowing threshold 0.05 sqrt(g H) = {sel['flowing_speed_m_s']:.5f} m/s (H 0.12 m)")
+
+    # A flowing factor of 0.1 (0.1085 m/s) drops the slow bins (u_s <= 0.10 m/s) and only them.
+    res2 = cd.calibrate(case, flowing_factor=0.1, n_boot=100)
+    speed = np.hypot(t["us"], t["ws"])
+    fast = int(np.sum(speed >= 0.1 * math.sqrt(9.81 * 0.12)))
+    check(res2["drifts"]["lambda_u"]["samples"] == fast,
+          f"--flowing-factor 0.1 keeps the {fast} bins of solid speed >= 0.1085 m/s "
+          f"(got {res2['drifts']['lambda_u']['samples']})")
+    # Windows 0.04-0.12 s hold windows 2..5 (of 0.02 s): 4 x 64 samples.
+    res3 = cd.calibrate(case, windows=(0.04, 0.12), n_boot=100)
+    check(res3["drifts"]["lambda_u"]["samples"] == 4 * 64 and
+          res3["selection"]["windows_used"] == [0.04, 0.12],
+          f"--windows 0.04:0.12: 4 windows, 256 samples (got "
+          f"{res3['drifts']['lambda_u']['samples']}, {res3['selection']['windows_used']})")
+
+    # The command end to end into a bulk case.
+    target = os.path.join(work, "bulk_case")
+    os.makedirs(os.path.join(target, "constant"), exist_ok=True)
+    bp = os.path.join(target, "constant", "bulkProperties")
+    if os.path.exists(bp):
+        os.remove(bp)
+    r = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
+                        "--target", target], capture_output=True, text=True)
+    print(r.stdout + r.stderr)
+    check(r.returncode == 0, f"calibrate_drifts.py exits 0 (got {r.returncode})")
+    d = read_dict(bp)["drifts"]
+    for q, key in (("lambda_u", "lambdaU"), ("lambda_w", "lambdaW"), ("lambda_p", "lambdaP")):
+        v = res["drifts"][q]["wls"]["value"]
+        check(abs(float(d[key]) - v) <= 1e-5 * abs(v),
+              f"bulkProperties drifts.{key} {d[key]} = the wls estimate {v:.6g} (6 digits)")
+    src = unquote(d["source"])
+    check(cd.sha256(h5) in src and "estimator wls" in src and "windows 0-0.12 s" in src,
+          f"drifts.source records the h5, its sha256, estimator and windows: {src}")
+    with open(bp + ".calibration.json") as fj:
+        j = json.load(fj)
+    check(abs(j["drifts"]["lambda_u"]["value"] - res["drifts"]["lambda_u"]["value"]) < 1e-12 and
+          j["sha256"] == cd.sha256(h5),
+          "the JSON next to bulkProperties holds the same estimates and fingerprint")
+    print(f"{len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
