@@ -13,6 +13,7 @@
 
 #include "Dictionary.h"
 #include "ForceModel.h"
+#include "ParticleRouting.h"
 #include "SourceAssembly.h"
 #include "SpherePoints.h"
 #include "VoidFractionModel.h"
@@ -608,4 +609,63 @@ TEST(ForceModels, DiFeliceExtremes) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("eps_f 0"), std::string::npos) << e.what();
   }
+}
+
+// The exchange's records go between ranks as runs of doubles: each unpacks to what was packed,
+// and packs to exactly its declared width.
+TEST(ParticleRouting, RecordsRoundTrip) {
+  std::vector<double> b;
+  ParticleRecord r1{7, 123456789, ParticleState{Vec3(1, 2, 3), Vec3(-4, 5e-3, 6), 1e-3, 2.5e-6}};
+  r1.pack(b);
+  ASSERT_EQ(b.size(), ParticleRecord::kWidth);
+  const ParticleRecord u1 = ParticleRecord::unpack(b.data(), b.size());
+  EXPECT_EQ(u1.ownerIndex, 7);
+  EXPECT_EQ(u1.tag, 123456789);
+  EXPECT_EQ(u1.p.x.z, 3);
+  EXPECT_EQ(u1.p.v.y, 5e-3);
+  EXPECT_EQ(u1.p.radius, 1e-3);
+  EXPECT_EQ(u1.p.mass, 2.5e-6);
+
+  PartRecord r2;
+  r2.ownerIndex = 3;
+  r2.workIndex = 11;
+  r2.inside = 0.25;
+  r2.centre = true;
+  r2.drag = CentreForce{ParticleForce{0.5, Vec3(1, 2, 3)}, Vec3(4, 5, 6), 7, Vec3(8, 9, 10), 11};
+  r2.modelForces = {Vec3(12, 13, 14), Vec3(15, 16, 17)};
+  b.clear();
+  r2.pack(b);
+  ASSERT_EQ(b.size(), PartRecord::width(2));
+  const PartRecord u2 = PartRecord::unpack(b.data(), b.size());
+  EXPECT_EQ(u2.workIndex, 11);
+  EXPECT_TRUE(u2.centre);
+  EXPECT_EQ(u2.drag.force.explicitForce.z, 3);
+  EXPECT_EQ(u2.drag.U.x, 4);
+  EXPECT_EQ(u2.drag.invFluidMass, 7);
+  EXPECT_EQ(u2.drag.fluidAcceleration.y, 9);
+  EXPECT_EQ(u2.drag.counterflow, 11);
+  ASSERT_EQ(u2.modelForces.size(), 2u);
+  EXPECT_EQ(u2.modelForces[1].z, 17);
+
+  ReactionRecord r3{5,
+                    FluidReaction{ParticleForce{2, Vec3(1, 1, 1)}, Vec3(3, 3, 3), Vec3(4, 4, 4),
+                                  Vec3(0.5, 0.5, 0.5)},
+                    1e-6, true, 0.75};
+  b.clear();
+  r3.pack(b);
+  ASSERT_EQ(b.size(), ReactionRecord::kWidth);
+  const ReactionRecord u3 = ReactionRecord::unpack(b.data(), b.size());
+  EXPECT_EQ(u3.workIndex, 5);
+  EXPECT_EQ(u3.reaction.force.beta, 2);
+  EXPECT_EQ(u3.reaction.U.y, 3);
+  EXPECT_EQ(u3.reaction.v.z, 4);
+  EXPECT_EQ(u3.reaction.explicitDrag.x, 0.5);
+  EXPECT_EQ(u3.insideTotal, 1e-6);
+  EXPECT_TRUE(u3.holdsCentre);
+  EXPECT_EQ(u3.sigma, 0.75);
+
+  b.clear();
+  VelocityRecord{9, Vec3(1, 2, 3)}.pack(b);
+  ASSERT_EQ(b.size(), VelocityRecord::kWidth);
+  EXPECT_EQ(VelocityRecord::unpack(b.data(), b.size()).U.y, 2);
 }
