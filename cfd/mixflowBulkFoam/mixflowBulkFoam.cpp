@@ -30,46 +30,17 @@ int main(int argc, char *argv[]) {
       "fraction and drifts, Coulomb-viscoplastic solid and the pore liquid's rheology)");
 
   // clang-format off
-#include "setRootCase.H"
-#include "createTime.H"
-#include "createMesh.H"
-#include "createPimpleControl.H"
-#include "createTimeControls.H"
-#include "initContinuityErrs.H"
-#include "createFields.H"
+#include "createStandaloneSolver.H"
 #include "createBulkFields.H"
-#include "checkSchemes.H"
-#include "createAlphaFluxes.H"
-#include "createFvOptions.H"
-#include "initCorrectPhi.H"
   // clang-format on
-
-  turbulence->validate();
-
-  {
-  // clang-format off
-#include "CourantNo.H"
-#include "setInitialDeltaT.H"
-      // clang-format on
-  }
-
-      Info
-      << "\nStarting time loop\n"
-      << endl;
 
   mixflow::Progress progress("bulk " + runTime.globalCaseName().name(), runTime.value(),
                              runTime.endTime().value(), std::cout);
 
   while (runTime.run()) {
     // clang-format off
-#include "readTimeControls.H"
-#include "courantNumbers.H"
-#include "setVofDeltaT.H"
+#include "beginTimeStep.H"
     // clang-format on
-
-    ++runTime;
-
-    Info << "Time = " << runTime.timeName() << nl << endl;
 
     // clang-format off
 #include "bulkDriftStress.H"

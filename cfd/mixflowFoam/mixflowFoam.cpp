@@ -45,34 +45,9 @@ int main(int argc, char *argv[]) {
       "(voidfraction), particle drag (Ksl, Us) and explicit particle force (fSource); "
       "volume-averaged formulation B");
 
-  // OpenFOAM's case-setup snippets; their order matters (args -> runTime -> mesh -> controls),
-  // so keep clang-format's include sorting away from them.
   // clang-format off
-#include "setRootCase.H"
-#include "createTime.H"
-#include "createMesh.H"
-#include "createPimpleControl.H"
-#include "createTimeControls.H"
-#include "initContinuityErrs.H"
-#include "createFields.H"
-#include "checkSchemes.H"
-#include "createAlphaFluxes.H"
-#include "createFvOptions.H"
-#include "initCorrectPhi.H"
+#include "createStandaloneSolver.H"
   // clang-format on
-
-  turbulence->validate();
-
-  {
-  // clang-format off
-#include "CourantNo.H"
-#include "setInitialDeltaT.H"
-      // clang-format on
-  }
-
-      Info
-      << "\nStarting time loop\n"
-      << endl;
 
   // A progress line every 5 s of wall time (rank 0): simulated time, wall time, estimate to
   // finish; the Allrun scripts show these lines on screen.
@@ -81,14 +56,8 @@ int main(int argc, char *argv[]) {
 
   while (runTime.run()) {
     // clang-format off
-#include "readTimeControls.H"
-#include "courantNumbers.H"
-#include "setVofDeltaT.H"
+#include "beginTimeStep.H"
     // clang-format on
-
-    ++runTime;
-
-    Info << "Time = " << runTime.timeName() << nl << endl;
 
     // The coupling sets voidfraction, Ksl, Us and fSource here (after ++runTime, so that
     // voidfraction.oldTime() is the previous step's field); standalone they keep their values.
