@@ -41,7 +41,8 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
 ESTIMATORS = ("wls", "median")
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
-# cfd/prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01, |lambda| <= 1e3.
+# cfd/prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
+# cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
 DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
 
 

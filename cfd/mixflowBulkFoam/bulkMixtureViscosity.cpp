@@ -71,7 +71,11 @@ Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::mixturePress
 Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::calcNu() const {
   const vector fs = solidVelocityFactors(), ff = fluidVelocityFactors();
   const volScalarField srSolid(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, fs)))));
-  const volScalarField srFluid(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, ff)))));
+  // u_f = u_s without drifts: the second gradient is then the first.
+  const tmp<volScalarField> tsrFluid =
+      ff == fs ? tmp<volScalarField>(srSolid)
+               : tmp<volScalarField>(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, ff)))));
+  const volScalarField& srFluid = tsrFluid();
   const tmp<volScalarField> tpm = mixturePressure();
   const scalar ps2yield =
       yieldPressureFactor_ / mixflow::bulk::lambdaCoefficients(alphaS_, drifts_).p;

@@ -1,6 +1,5 @@
 #include "BulkModel.h"
 
-#include <algorithm>
 #include <filesystem>
 
 #include "Dictionary.h"
@@ -10,12 +9,11 @@ namespace mixflow::cfd {
 
 namespace {
 constexpr double kGravity = 9.81;
-// alpha_s + lambda alpha_f must stay clear of 0: Lambda = 1 / (alpha_s + lambda alpha_f).
-constexpr double kDriftDenominatorMin = 0.01;
 
+// alpha_s + lambda alpha_f >= kDriftDenominatorMin: Lambda = 1 / (alpha_s + lambda alpha_f).
 double readDrift(const Dictionary& d, const std::string& key, double alphaS) {
   // Above 1e3 a drift means a phase at rest against the other: the ratio is then meaningless.
-  const double lo = alphaS < 1 ? (kDriftDenominatorMin - alphaS) / (1 - alphaS) : -1e3;
+  const double lo = alphaS < 1 ? (bulk::kDriftDenominatorMin - alphaS) / (1 - alphaS) : -1e3;
   return d.scalarOr(key, 1.0, Range::closed(lo, 1e3));
 }
 }  // namespace
