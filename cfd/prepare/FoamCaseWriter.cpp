@@ -218,19 +218,12 @@ std::string fvSolution(const LiquidCase& c) {
 
 // The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
 // (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
-std::string bulkTransport(const LiquidCase& c) {
+std::string bulkMixtureCoeffs(const LiquidCase& c) {
   const BulkModel& b = c.bulk;
   const Rheology& r = c.liquid;
   const bool yield = r.yieldStressModel();
   std::ostringstream s;
-  s << "// Bulk model (constant/bulkProperties): alpha_s " << num(b.solidFraction) << ", rho_s "
-    << num(b.solidDensity) << " kg/m3, drifts from " << b.driftSource << ";\n"
-    << "// solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
-    << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation)
-    << " s, yield pressure " << b.yieldPressure << ".\n"
-    << "phases (" << kLiquidPhase << " " << kAirPhase << ");   // " << kLiquidPhase
-    << " is the mixture\n\n"
-    << kLiquidPhase << "\n{\n    transportModel  bulkMixture;\n    bulkMixtureCoeffs\n    {\n"
+  s << "    transportModel  bulkMixture;\n    bulkMixtureCoeffs\n    {\n"
     << "        solidFraction       " << num(b.solidFraction) << ";\n"
     << "        lambdaU             " << num(b.lambdaU) << ";\n"
     << "        lambdaW             " << num(b.lambdaW) << ";\n"
@@ -248,15 +241,11 @@ std::string bulkTransport(const LiquidCase& c) {
     << "        solidDensity        " << num(b.solidDensity) << ";\n"
     << "        fluidDensity        " << num(r.density) << ";\n"
     << "        airDensity          " << num(c.air.density) << ";\n"
-    << "        relaxation          " << num(b.relaxation) << ";\n    }\n"
-    << "    rho             " << num(b.mixtureDensity) << ";\n}\n\n"
-    << kAirPhase << "\n{\n    transportModel  Newtonian;\n"
-    << "    nu              " << num(c.air.viscosity / c.air.density) << ";\n"
-    << "    rho             " << num(c.air.density) << ";\n}\n\n"
-    << "sigma           " << num(c.surfaceTension) << ";\n";
+    << "        relaxation          " << num(b.relaxation) << ";\n    }\n";
   return s.str();
 }
 
+// The non-air phase is the liquid, or for the bulk model the mixture (bulkMixtureCoeffs).
 std::string transportProperties(const LiquidCase& c) {
   const Rheology& r = c.liquid;
   std::ostringstream s;
@@ -271,9 +260,20 @@ std::string transportProperties(const LiquidCase& c) {
          "k = kappa/rho, nu0 = mu_0/rho;\n// nu = min(nu0, (tau0 + k sr^n)/sr), sr = sqrt(2) "
          "|symm(grad U)|.\n";
   }
-  if (c.bulkModel()) return s.str() + bulkTransport(c);
-  s << "phases (" << kLiquidPhase << " " << kAirPhase << ");\n\n" << kLiquidPhase << "\n{\n";
-  if (r.model == "Newtonian") {
+  if (c.bulkModel()) {
+    const BulkModel& b = c.bulk;
+    s << "// Bulk model (constant/bulkProperties): alpha_s " << num(b.solidFraction) << ", rho_s "
+      << num(b.solidDensity) << " kg/m3, drifts from " << b.driftSource << ";\n"
+      << "// solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
+      << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation)
+      << " s, yield pressure " << b.yieldPressure << ".\n";
+  }
+  s << "phases (" << kLiquidPhase << " " << kAirPhase << ");"
+    << (c.bulkModel() ? std::string("   // ") + kLiquidPhase + " is the mixture" : "") << "\n\n"
+    << kLiquidPhase << "\n{\n";
+  if (c.bulkModel()) {
+    s << bulkMixtureCoeffs(c);
+  } else if (r.model == "Newtonian") {
     s << "    transportModel  Newtonian;\n    nu              " << num(r.nu()) << ";\n";
   } else {
     s << "    transportModel  HerschelBulkley;\n"
@@ -283,7 +283,7 @@ std::string transportProperties(const LiquidCase& c) {
       << "        tau0 " << num(r.tau0()) << ";\n"
       << "        nu0  " << num(r.nu0()) << ";\n    }\n";
   }
-  s << "    rho             " << num(r.density) << ";\n}\n\n"
+  s << "    rho             " << num(c.phaseDensity()) << ";\n}\n\n"
     << kAirPhase << "\n{\n    transportModel  Newtonian;\n"
     << "    nu              " << num(c.air.viscosity / c.air.density) << ";\n"
     << "    rho             " << num(c.air.density) << ";\n}\n\n"
