@@ -106,20 +106,22 @@ def write_case(case, scene, cfd, end, write_interval):
         f.write(hdr % "controlDict" + f"endTime {end};\nwriteInterval {write_interval};\n")
 
 
-def run_case(a, case, np=1):
-    """mixflowPrepare, blockMesh, mixflowFoam (serial or np ranks). Returns the time series."""
+def run_case(a, case, np=1, solver=None):
+    """mixflowPrepare, blockMesh, the solver (a.solver, mixflowFoam, unless given; serial or np
+    ranks). Returns the time series."""
+    solver = solver or a.solver
+    log_name = "log." + os.path.basename(solver)
     fc.run([a.prepare, "-case", case, "-np", str(np)], case, "log.mixflowPrepare")
     fc.run([a.blockmesh], case, "log.blockMesh")
     if np > 1:
         fc.run([a.decomposepar, "-force"], case, "log.decomposePar")
         log = fc.run(fc.launcher_tokens(a.mpiexec) + ["-x", "WM_PROJECT_DIR", "-np", str(np),
-                                                      a.solver, "-parallel"], case,
-                     "log.mixflowFoam")
+                                                      solver, "-parallel"], case, log_name)
         if not re.search(rf"^nProcs\s*:\s*{np}\s*$", log, re.M):
             fc.fail(f"{case}: not a parallel run on {np} ranks")
         fc.run([a.reconstructpar, "-latestTime"], case, "log.reconstructPar")
     else:
-        log = fc.run([a.solver], case, "log.mixflowFoam")
+        log = fc.run([solver], case, log_name)
     if "while loading function object" in log or "liquidObservables liquid:" not in log:
         fc.fail(f"{case}: the liquidObservables function object did not run (see the log)")
     return read_series(case)
@@ -452,6 +454,24 @@ BAD = [
 ]
 
 
+def refused(prepare, case, name, expected):
+    """mixflowPrepare refuses CASE, with -check and without, with exit 2 and a message holding
+    every fragment of EXPECTED (file, entry, allowed range), and writes no OpenFOAM file."""
+    res = subprocess.run([prepare, "-case", case, "-check"], capture_output=True, text=True)
+    msg = res.stdout + res.stderr
+    missing = [f for f in expected if f not in msg]
+    # Without -check a rejected input must leave no OpenFOAM files behind.
+    res2 = subprocess.run([prepare, "-case", case], capture_output=True, text=True)
+    wrote = os.path.exists(os.path.join(case, "0")) or os.path.exists(
+        os.path.join(case, "system/blockMeshDict"))
+    good = res.returncode == 2 and res2.returncode == 2 and not missing and not wrote
+    last = msg.strip().splitlines()[-1] if msg.strip() else ""
+    ok = check(good, f"{name}: exit {res.returncode}; {last}")
+    if not good:
+        print(f"       expected exit 2, fragments {missing} missing, files written: {wrote}")
+    return ok
+
+
 def bad_input(a, work):
     ok = True
     for name, scene, rel, edit, expected in BAD:
@@ -468,18 +488,7 @@ def bad_input(a, work):
                 fc.fail(f"{name}: the edit did not apply to {rel}")
             with open(path, "w") as f:
                 f.write(new)
-        res = subprocess.run([a.prepare, "-case", case, "-check"], capture_output=True, text=True)
-        msg = res.stdout + res.stderr
-        missing = [f for f in expected if f not in msg]
-        # Without -check a rejected input must leave no OpenFOAM files behind.
-        res2 = subprocess.run([a.prepare, "-case", case], capture_output=True, text=True)
-        wrote = os.path.exists(os.path.join(case, "0")) or os.path.exists(
-            os.path.join(case, "system/blockMeshDict"))
-        good = res.returncode == 2 and res2.returncode == 2 and not missing and not wrote
-        last = msg.strip().splitlines()[-1] if msg.strip() else ""
-        ok &= check(good, f"{name}: exit {res.returncode}; {last}")
-        if not good:
-            print(f"       expected exit 2, fragments {missing} missing, files written: {wrote}")
+        ok &= refused(a.prepare, case, name, expected)
     # Valid cases, and `nCorrectors auto`: 3 for a viscous number D = mu_max maxDeltaT / (rho
     # dx^2) up to 20, else 10 (HB and Bingham: cap 1e4 Pa s, 0.01 s, 0.03 m cells, D = 111;
     # water D = 1.1e-5); an explicit entry wins.
