@@ -135,7 +135,7 @@ def main():
     ap.add_argument("--settled", help="a dem/ directory with settled.{restart,state,inputs} of "
                     "an earlier run of this bench with the same DEM settings (kept with --keep): "
                     "the coupled runs start from it instead of settling again; mixflowDem -reuse "
-                    "refuses it if settled from other inputs (or before session 12, unfingerprinted)")
+                    "refuses it if settled from other inputs (or if it has no fingerprint)")
     ap.add_argument("--void-smoothing", type=float,
                     help="couplingProperties dividedCoeffs smoothing (face band / particle radius; "
                          "default: the case's, 0 = off)")

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 4 test 2: pressure drop of a fixed packed bed vs Ergun, three velocities below minimum
+"""Pressure drop of a fixed packed bed vs Ergun, three velocities below minimum
 fluidisation (tests/reference/ergun_cfdem_ErgunTestMPI.csv: CFDEMcoupling's ErgunTestMPI bed,
 d 1 mm, eps 0.451335, rho_f 10 kg/m3, nu 1.5e-4 m2/s; U_mf = 0.0145 m/s).
 

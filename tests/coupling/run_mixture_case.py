@@ -97,7 +97,7 @@ def main():
                     help="J: bound of max_t [KE_p(t) - (PE_p(0) - PE_p(t))]")
     ap.add_argument("--divergence", action="store_true",
                     help="instead: maxVelocity 1 m/s must stop the run with the place and time, "
-                         "keeping the outputs written so far (issue 4 test 6)")
+                         "keeping the outputs written so far")
     a = ap.parse_args()
 
     case = os.path.join(a.workdir, "W+P-quick")
