@@ -6,10 +6,10 @@
 
 namespace mixflow::coupling {
 
-double LiquidLaw::viscosity(double rate) const {
+double LiquidLaw::viscosity(double rate, double shape) const {
   if (newtonian()) return consistency;
   const double r = std::max(rate, 1e-300);
-  const double mu = (yieldStress + consistency * std::pow(r, flowIndex)) / r;
+  const double mu = (yieldStress + shape * consistency * std::pow(r, flowIndex)) / r;
   return viscosityCap > 0 ? std::min(mu, viscosityCap) : mu;
 }
 

@@ -7,9 +7,10 @@
 //   slip      the liquid's law at a particle-scale rate sqrt(rate_resolved^2 + rate_slip^2),
 //             rate_slip = |U - v| / d max(shearRateFactor, 12 (1 - eps_f) / eps_f): Christopher &
 //             Middleman's pore-wall rate of a packed bed, blending to the single sphere's
-//             shearRateFactor |U - v| / d when dilute. Its yield part tau_y / rate gives the
-//             drag a plastic force that the implicit drag integrates as a regularised sign
-//             of the slip.
+//             shearRateFactor |U - v| / d when dilute. Its power-law part carries the published
+//             shape factor (powerLawShape): X(n) of a lone sphere, C&M's ((3n + 1) / 4n)^n
+//             in a bed. Its yield part tau_y / rate gives the drag a plastic force that the
+//             implicit drag integrates as a regularised sign of the slip.
 #pragma once
 
 #include <memory>
@@ -34,7 +35,9 @@ struct LiquidLaw {
   double airDensity = 1;
   double airViscosity = 1.48e-5;  // [Pa s]
   bool newtonian() const { return yieldStress == 0 && flowIndex == 1 && viscosityCap == 0; }
-  double viscosity(double rate) const;  // the liquid's apparent viscosity at this shear rate
+  // The liquid's apparent viscosity at this shear rate, its power-law part K rate^(n-1) times
+  // shape (the drag's correction for the flow around grains; 1: the liquid's own law).
+  double viscosity(double rate, double shape = 1.0) const;
   // The liquid fraction of a liquid/air mixture of density rho (clamped to [0, 1]).
   double liquidFraction(double rho) const;
 };
@@ -59,5 +62,11 @@ std::unique_ptr<DragViscosity> makeSlipDragViscosity(const Dictionary& d, const 
 
 // The slip closure's shear rate, exposed for tests.
 double slipShearRate(double slip, double diameter, double voidfraction, double shearRateFactor);
+// X(n): creeping drag on a sphere in a power-law liquid over 3 pi K V^n d^(2-n) (tabulated
+// numerical solutions, tests/reference/powerlaw_sphere_drag_correction.csv; 1 for n >= 1).
+double powerLawSphereFactor(double n);
+// The slip closure's power-law shape factor: X(n)^(1-w) ((3n + 1) / 4n)^(n w), w = pore /
+// (pore + shearRateFactor), pore = 12 (1 - eps_f) / eps_f (the bed's share of the slip rate).
+double powerLawShapeFactor(double n, double voidfraction, double shearRateFactor);
 
 }  // namespace mixflow::coupling

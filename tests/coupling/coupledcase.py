@@ -274,6 +274,32 @@ def read_reference(path, key_col, key):
     fc.fail(f"{path}: no row with {key_col} = {key}")
 
 
+def powerlaw_sphere_factor(reference_dir, n):
+    """X(n) of tests/reference/powerlaw_sphere_drag_correction.csv, linear in n; 1 for n >= 1
+    (coupling/DragViscosity.h powerLawSphereFactor)."""
+    if n >= 1:
+        return 1.0
+    path = os.path.join(reference_dir, "powerlaw_sphere_drag_correction.csv")
+    with open(path) as f:
+        rows = sorted((float(r["n"]), float(r["X_numerical"])) for r in
+                      csv.DictReader(line for line in f if not line.startswith("#")))
+    for (n0, x0), (n1, x1) in zip(rows, rows[1:]):
+        if n0 <= n <= n1:
+            return x0 + (x1 - x0) * (n - n0) / (n1 - n0)
+    sys.exit(f"{path}: n = {n} outside the table")
+
+
+def powerlaw_shape_factor(reference_dir, n, eps, shear_rate_factor=1.0):
+    """The slip closure's power-law shape factor X(n)^(1-w) ((3n + 1) / 4n)^(n w), w = pore /
+    (pore + factor), pore = 12 (1 - eps) / eps (coupling/DragViscosity.h powerLawShapeFactor)."""
+    if n >= 1:
+        return 1.0
+    pore = 12 * (1 - eps) / eps
+    w = pore / (pore + shear_rate_factor)
+    return powerlaw_sphere_factor(reference_dir, n) ** (1 - w) * \
+        ((3 * n + 1) / (4 * n)) ** (n * w)
+
+
 def check(ok, what):
     print(("  PASS " if ok else "  FAIL ") + what, flush=True)
     return ok

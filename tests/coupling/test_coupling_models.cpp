@@ -210,6 +210,28 @@ TEST(DragViscosity, LiquidLawAndSlipRate) {
   EXPECT_NEAR(slipShearRate(0.024, 0.024, 0.999, 1.5), 1.5, 1e-12);
 }
 
+TEST(DragViscosity, PowerLawShapeFactorHasTheSphereAndBedLimits) {
+  // Lone sphere (eps_f 1): X(n) of the tabulated numerical solutions; 1 for a Newtonian or
+  // Bingham law (n = 1) in any packing.
+  EXPECT_DOUBLE_EQ(powerLawSphereFactor(1.0), 1.0);
+  EXPECT_NEAR(powerLawSphereFactor(0.5), 1.420, 1e-12);
+  EXPECT_NEAR(powerLawSphereFactor(0.45), 1.431, 1e-12);
+  EXPECT_DOUBLE_EQ(powerLawShapeFactor(1.0, 0.4, 1.0), 1.0);
+  EXPECT_NEAR(powerLawShapeFactor(0.5, 1.0, 1.0), 1.420, 1e-12);
+  // Packed: the pore rate 12 (1 - eps) / eps = 18 at eps 0.4 takes weight 18/19 for Christopher &
+  // Middleman's ((3n + 1) / 4n)^n = 1.25^0.5 at n 0.5.
+  const double bed = std::sqrt(1.25);
+  EXPECT_NEAR(powerLawShapeFactor(0.5, 0.4, 1.0),
+              std::pow(1.420, 1.0 / 19) * std::pow(bed, 18.0 / 19), 1e-12);
+  // The liquid's law takes the factor on its power-law part only.
+  LiquidLaw hb;
+  hb.yieldStress = 30;
+  hb.consistency = 4.279;
+  hb.flowIndex = 0.479;
+  hb.viscosityCap = 1e4;
+  EXPECT_NEAR(hb.viscosity(2.0, 1.5), 30 / 2.0 + 1.5 * 4.279 * std::pow(2.0, 0.479 - 1), 1e-12);
+}
+
 TEST(DragViscosity, SlipClosureGivesTheBinghamPlasticDrag) {
   // A lone grain at slip s in a Bingham liquid: mu = tau_y d / s + mu_p, so the drag tends to the
   // plastic force Cd Re / 24 x 3 pi tau_y d^2 as s -> 0 (before the cap), and the resolved
