@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""The bulk model's speed against CFD-DEM on the same mixture scene, both measured in this run.
+
+usage: bench/bulk_vs_cfddem.py [--scenes HB+P] [--work /tmp/mixflow-bench-bulk]
+                               [--bulk-cell-sizes tier,0.075] [--json results/bench/bulk_vs_cfddem.json]
+
+For each scene: the CFD-DEM run at the tier `reference` (settling, then mixflowCoupled), then the
+bulk model (mixflowBulkFoam) at the tier `bulk`, once per --bulk-cell-sizes entry (`tier`: the
+tier's own cell size; a number: `--set cfdDict.cellSize=` it), each through scripts/suite.py into
+WORK/<label>, one after the other. Measured per run: the solver's CPU time (its log's last
+ExecutionTime), the settling's wall time (CFD-DEM only), the suite's wall time, the simulated end
+time and the granular front at the end. Ratios: CFD-DEM solver CPU / bulk solver CPU, and the
+same with the settling added to the CFD-DEM side (what a user waits for). Target (issue of the bulk
+model): 100. The runs are kept in WORK (delete it to rerun from scratch; a finished run is not
+run again by the suite, so delete WORK before timing again).
+"""
+
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def last_execution_time(log):
+    """The last 'ExecutionTime = X s' of an OpenFOAM log (CPU seconds), or None."""
+    t = None
+    with open(log) as f:
+        for line in f:
+            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
+            if m:
+                t = float(m.group(1))
+    return t
+
+
+def settle_wall(log):
+    """The settling's wall time (s) from mixflowDem's last '[settle] ... wall hh:mm:ss' line."""
+    wall = None
+    with open(log) as f:
+        for line in f:
+            m = re.search(r"^\[settle\].*wall (\d+):(\d+):(\d+)", line)
+            if m:
+                h, mi, s = (int(g) for g in m.groups())
+                wall = 3600 * h + 60 * mi + s
+    return wall
+
+
+def end_state(case):
+    """(simulated end time, granular front x) at the last output row: CFD-DEM's grains
+    (postProcessing/dem/timeSeries.csv front_x_m), the bulk model's mixture on the bed
+    (postProcessing/liquid/timeSeries.csv front_bed_m)."""
+    dem = os.path.join(case, "postProcessing", "dem", "timeSeries.csv")
+    path, key = (dem, "front_x_m") if os.path.isfile(dem) else \
+        (os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
+    with open(path) as f:
+        rows = list(csv.DictReader(ln for ln in f if ln.strip() and not ln.startswith("#")))
+    return float(rows[-1]["time_s"]), float(rows[-1][key])
+
+
+def run(label, scene, tier, work, sets):
+    cmd = [sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", tier, "--scenes",
+           scene, "--work", os.path.join(work, label)]
+    for s in sets:
+        cmd += ["--set", s]
+    print("+ " + " ".join(cmd), flush=True)
+    # The bench measures: a run the suite finds finished would not be timed.
+    if os.path.exists(os.path.join(work, label, scene, ".done")):
+        sys.exit(f"bench: {os.path.join(work, label)} holds a finished run; delete {work} first")
+    t0 = time.time()
+    subprocess.run(cmd, check=True)
+    wall = time.time() - t0
+    case = os.path.join(work, label, scene)
+    solver = "mixflowCoupled" if os.path.isfile(os.path.join(case, "log.mixflowCoupled")) \
+        else "mixflowBulkFoam"
+    rec = {"label": label, "tier": tier, "set": sets, "solver": solver, "suite_wall_s": wall,
+           "solver_cpu_s": last_execution_time(os.path.join(case, f"log.{solver}"))}
+    dem_log = os.path.join(case, "log.mixflowDem")
+    rec["settle_wall_s"] = settle_wall(dem_log) if os.path.isfile(dem_log) else None
+    rec["simulated_s"], rec["granular_front_m"] = end_state(case)
+    print(json.dumps(rec), flush=True)
+    return rec
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default="HB+P")
+    ap.add_argument("--work", default="/tmp/mixflow-bench-bulk")
+    ap.add_argument("--bulk-cell-sizes", default="tier,0.075")
+    ap.add_argument("--json")
+    a = ap.parse_args()
+    out = {"command": "python3 bench/bulk_vs_cfddem.py " + " ".join(sys.argv[1:]), "scenes": {}}
+    for scene in a.scenes.split(","):
+        ref = run(f"{scene}-cfddem", scene, "reference", a.work, [])
+        bulks = []
+        for size in a.bulk_cell_sizes.split(","):
+            sets = [] if size == "tier" else [f"cfdDict.cellSize={size}"]
+            b = run(f"{scene}-bulk-{size}", scene, "bulk", a.work, sets)
+            b["ratio_solver_cpu"] = ref["solver_cpu_s"] / b["solver_cpu_s"]
+            b["ratio_with_settling"] = (ref["solver_cpu_s"] + (ref["settle_wall_s"] or 0)) / \
+                b["solver_cpu_s"]
+            if ref["granular_front_m"] and b["granular_front_m"]:
+                b["front_error"] = b["granular_front_m"] / ref["granular_front_m"] - 1
+            bulks.append(b)
+            print(f"{scene} bulk ({size}): solver CPU {b['solver_cpu_s']:.1f} s against CFD-DEM "
+                  f"{ref['solver_cpu_s']:.1f} s (+ settling {ref['settle_wall_s']} s): ratio "
+                  f"{b['ratio_solver_cpu']:.2f} ({b['ratio_with_settling']:.2f} with settling); "
+                  f"front {b['granular_front_m']} m against {ref['granular_front_m']} m", flush=True)
+        out["scenes"][scene] = {"cfddem": ref, "bulk": bulks}
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(out, f, indent=1)
+            f.write("\n")
+        print(f"wrote {a.json}")
+
+
+if __name__ == "__main__":
+    main()
