@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
 
-usage: report.py [--work runs/reference] [--out results/li_zhao_2018]
+usage: report.py [--work runs/reference[,runs/quick,...]] [--out results/li_zhao_2018]
 
-Reads the finished scenes (WORK/<scene>/.done) and writes OUT/report.md, OUT/*.png and
+Reads the finished scenes (WORK/<scene>/.done; with several work directories, each scene from the
+first one where it finished, so a report can take each scene from the best tier that ran it) and
+writes OUT/report.md, OUT/*.png and
 OUT/summary.json: liquid and granular fronts, relative velocities, kinetic energies, E_pd and E_fc
 (Eqs. 13-14), fluid-particle forces, Froude and Savage numbers, profiles at t = 0.63 and 0.75 s,
 dry deposits and the runout law, HB-I/B-I normalised fronts, and the table "the paper says / we
@@ -892,15 +894,21 @@ def clean(o):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--work", default="runs/reference", help="suite.py's work directory")
+    ap.add_argument("--work", default="runs/reference",
+                    help="suite.py's work directory, or several, comma-separated, in order of "
+                    "preference")
     ap.add_argument("--out", default="results/li_zhao_2018")
     args = ap.parse_args(argv)
-    work, out = (p if os.path.isabs(p) else os.path.join(suite.ROOT, p) for p in (args.work, args.out))
+    def absolute(p):
+        return p if os.path.isabs(p) else os.path.join(suite.ROOT, p)
+    works, out = [absolute(p) for p in args.work.split(",")], absolute(args.out)
+    work = ", ".join(works)
     os.makedirs(out, exist_ok=True)
     sc = {}
     for n in suite.TABLE1:
         try:
-            sc[n] = Scene(work, n)
+            found = [w for w in works if os.path.isfile(os.path.join(w, n, ".done"))]
+            sc[n] = Scene((found or works)[0], n)
         except Exception as e:  # noqa: BLE001  an unreadable scene is reported, not fatal
             print(f"report.py: {n}: cannot read its outputs: {e}", file=sys.stderr)
             sc[n] = Scene("/nonexistent", n)
