@@ -6,9 +6,10 @@
 // state); the particles' is a LIGGGHTS restart written at the same step (contacts and their
 // history included), in two alternating files so that a failure while writing one leaves the
 // other and its state file intact. The granular outputs' counters come back from this file. The
-// coupling's forces are not stored: the resumed run's first exchange computes them from the
-// fluid at the written time, as a run's start does (the uninterrupted run used the fluid one CFD
-// step earlier for that interval; tests/coupling/test_coupled_resume.py measures the difference).
+// implicit drag's per-particle state (beta, U, explicit force for the next interval) is part of
+// the LIGGGHTS restart, so the resumed first interval runs with the forces the stopped run had
+// set (DemLink.h); the held drag's forces are recomputed from the fluid at the written time
+// (tests/coupling/test_coupled_resume.py measures the difference to the uninterrupted run).
 #pragma once
 
 #include <string>

@@ -9,6 +9,7 @@
 #include <lammps.h>
 #include <lmptype.h>
 #include <modify.h>
+#include <mpi.h>
 #include <update.h>
 
 #include <cstring>
@@ -22,7 +23,8 @@ const char* kStateId = "mixflowDragState";
 // Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3), 1 / m_f,
 // the fluid share's own acceleration(3), counterflow factor c, the sum of the particle's
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
-// over the one before(3) (v_ref: what the fluid step behind U saw).
+// over the one before(3) (v_ref: what the fluid step behind U saw), and 1 once a pushImplicit set
+// it (0 in a restart without the state).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -35,7 +37,8 @@ enum State {
   kVelocitySum = 18,
   kMeanVelocityLast = 21,
   kMeanVelocityRef = 24,
-  kStateSize = 27
+  kPushed = 27,
+  kStateSize = 28
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -53,9 +56,10 @@ DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
     session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
     return;
   }
-  // The state migrates with the atoms (exchange), is not needed on ghosts, not restarted.
+  // The state migrates with the atoms (exchange), is written to restarts (read back when this fix
+  // is defined after read_restart), and is not needed on ghosts.
   std::string cmd =
-      std::string("fix ") + kStateId + " all property/atom " + kStateId + " vector no no no";
+      std::string("fix ") + kStateId + " all property/atom " + kStateId + " vector yes no no";
   for (int k = 0; k < kStateSize; ++k) cmd += " 0";
   session_.command(cmd);
   // pf/callback 1 1: the callback fills fexternal at every step, which is then added to f.
@@ -153,7 +157,38 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
       si[kImpulse + k] = 0.0;
       si[kAccel + k] = next[i].fluidAcceleration[k];
     }
+    si[kPushed] = 1.0;
   }
+}
+
+bool DemLink::adoptRestoredState() {
+  if (mode_ != DragIntegration::implicit)
+    throw std::logic_error("coupling: adoptRestoredState needs dragIntegration implicit");
+  double** s = state();
+  const int n = session_.lammps()->atom->nlocal;
+  int missing = 0;
+  for (int i = 0; i < n; ++i)
+    if (s[i][kPushed] != 1.0) ++missing;
+  int anyMissing = 0;
+  MPI_Allreduce(&missing, &anyMissing, 1, MPI_INT, MPI_MAX, session_.lammps()->world);
+  adopted_ = anyMissing == 0;
+  intervalStart_ = session_.step();
+  return adopted_;
+}
+
+bool DemLink::keepRestoredState() {
+  if (!adopted_) return false;
+  adopted_ = false;
+  // The setup runs since the restart called the drag at this step; the interval starts here.
+  double** s = state();
+  const int n = session_.lammps()->atom->nlocal;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      s[i][kImpulse + k] = 0.0;
+      s[i][kVelocitySum + k] = 0.0;
+    }
+  intervalStart_ = session_.step();
+  return true;
 }
 
 void DemLink::setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has) {

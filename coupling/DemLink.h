@@ -29,6 +29,8 @@
 //             gravity, walls: fixes defined before it), so this fix must be the last force fix.
 //             Particles must be integrated by LIGGGHTS (a fixed bed without an integrator
 //             needs `held`).
+// The implicit state is written to LIGGGHTS restarts and read back with them (a resumed run's first
+// interval then uses the forces the stopped run had set: keepRestoredState).
 // Caveat (checked): fix external does not initialise the array for atoms created during a run
 // (memory->grow), so particles must not be inserted during a coupled interval; pull() stops the
 // run if the global atom count grew.
@@ -80,6 +82,15 @@ class DemLink {
   void push(const std::vector<Vec3>& forces);
   // implicit: the next interval's beta, U and explicit force; resets the impulses.
   void pushImplicit(const std::vector<AppliedDrag>& next);
+  // implicit, resuming, before the setup run: true if the particles' restart held the drag state
+  // a coupled run wrote with it (on every particle, every rank: pushImplicit marks it), which is
+  // then kept for the first interval instead of being zeroed; false for a restart without it
+  // (e.g. the settled sample's).
+  bool adoptRestoredState();
+  // implicit, at the first exchange of a resumed run: the adopted state drives the next interval
+  // as it would have without the stop (impulses restarted, as pushImplicit does); false, and
+  // nothing changed, if none was adopted.
+  bool keepRestoredState();
   // implicit, after pushImplicit and before the interval runs: replaces the fluid velocity U of
   // local particle i (same order as the last pull) where has[i].
   void setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has);
@@ -104,6 +115,7 @@ class DemLink {
   long lastGlobalCount_ = -1;
   std::int64_t lastCallStep_ = -1;
   std::int64_t intervalStart_ = 0;  // DEM step of the last pushImplicit
+  bool adopted_ = false;            // the restart's drag state is kept (adoptRestoredState)
 };
 
 }  // namespace mixflow::coupling

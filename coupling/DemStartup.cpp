@@ -145,9 +145,10 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
   std::vector<ParticleState> particles;
   std::vector<std::int64_t> tags;
   d.link->pull(particles, tags);
+  // Resuming with the implicit drag: the restart's drag state is kept for the first interval.
   if (d.link->mode() == DemLink::DragIntegration::held)
     d.link->push(std::vector<Vec3>(particles.size()));
-  else
+  else if (!(resume && d.link->adoptRestoredState()))
     d.link->pushImplicit(std::vector<AppliedDrag>(particles.size()));
   d.session->command("run 0");
   d.session->invalidateSetup();

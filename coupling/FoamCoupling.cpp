@@ -197,6 +197,22 @@ struct FoamCoupling::Exchange {
   std::vector<double> modelTotals;  // per force model (3 each): forces on the owned particles
 };
 
+// A resumed run's first interval keeps the drag the stopped run had set for it (read back with
+// the particles' restart, DemLink.h), so it runs as it would have without the stop; the held
+// drag's forces (and a restart without the state) are recomputed from the fluid at the write.
+void FoamCoupling::handToDem(Exchange& x) {
+  if (resume_ && exchanges_ == 0 && link_->mode() == DemLink::DragIntegration::implicit) {
+    if (link_->keepRestoredState()) {
+      Foam::Info << "Coupling: resumed with the drag state of the particles' restart" << Foam::endl;
+      return;
+    }
+    Foam::Info << "Coupling: the particles' restart holds no drag state; the first interval's "
+                  "drag is computed from the fluid at the write"
+               << Foam::endl;
+  }
+  drag_->handToDem(*link_, x.own, x.owned);
+}
+
 void FoamCoupling::exchange() {
   const double wall0 = MPI_Wtime();
   Exchange x;
@@ -206,7 +222,7 @@ void FoamCoupling::exchange() {
   clock_.time(StageClock::sample, [&] { sampleFluid(x); });
   clock_.time(StageClock::forces, [&] { forces(x); });
   clock_.time(StageClock::gather, [&] { gather(x); });
-  clock_.time(StageClock::toDem, [&] { drag_->handToDem(*link_, x.own, x.owned); });
+  clock_.time(StageClock::toDem, [&] { handToDem(x); });
   clock_.time(StageClock::deposit, [&] { depositSources(x); });
   clock_.time(StageClock::totals,
               [&] { log_->reduce(assembly_->totals(), x.remote, x.counts, x.own, x.modelTotals); });

@@ -13,10 +13,14 @@ with what a failure after that write leaves (a half-written later time directory
   2. liquid, granular and exchange series: the same times as A (1e-8 s), strictly increasing, no
      duplicate (B's own end-time row at 0.05 s, off the granular sampling chain, is cut);
   3. at 0.15 s B agrees with A: grains' potential energy within 1e-4 J, granular and liquid fronts
-     within 1e-4 m, grains' kinetic energy within 1 %. When this test was written the differences
-     were 8e-6 J, 5e-6 m, 2e-6 m and 0.04 % (the resumed first interval takes its fluid forces
-     from the fluid at 0.05 s rather than one CFD step earlier); without a full LIGGGHTS setup
-     after write_restart (stale neighbour lists) A itself changed by 3e-3 J and 15 % at the write.
+     within 1e-4 m, grains' kinetic energy within 1 %, and the resumed run says it kept the
+     drag state of the particles' restart (DemLink.h). Measured serially with the default slip
+     drag viscosity: 2.2e-5 J, 1.5e-5 m, 2.6e-6 m, 0.2 % (the first half step's force is
+     recomputed at the restart). Recomputing the first interval's drag from the fluid at the
+     write instead (what a restart without the state gets): 1.9e-4 J, 3.1e-5 m, 2.6e-7 m,
+     0.2 %; the slip closure's coefficient varies as 1 / slip in a held column. Without a full
+     LIGGGHTS setup after write_restart (stale neighbour lists) A itself changed by 3e-3 J and
+     15 % at the write.
   4. resuming a case that wrote no field is refused, naming dem/coupled.resume.state.
 """
 import csv
@@ -51,13 +55,6 @@ def make(name, end):
                                                    "sceneProperties")).read()
     text = text[:text.index("liquid   //")] + hb[hb.index("liquid   //"):]
     open(sp, "w").write(text)
-    # The resolved drag viscosity: this test is about the resume's mechanics. The coupling forces
-    # are not stored with a write, so the resumed first interval recomputes them from the fluid
-    # at the write, one CFD step later than the uninterrupted run; with the slip closure (the
-    # default for this liquid), whose drag coefficient varies as 1 / slip in a held column, that
-    # first interval moves the end state by 2.4e-4 J (against 8e-6 J with resolved).
-    with open(os.path.join(d, "constant", "couplingProperties"), "a") as f:
-        f.write("DiFeliceDragCoeffs { dragViscosity resolved; }   // test option\n")
     set_end(d, end)
     return d
 
@@ -109,6 +106,9 @@ for rel in ("postProcessing/liquid/timeSeries.csv", "postProcessing/dem/timeSeri
 set_end(b, 0.15)
 rc, out = resume(b)
 check(rc == 0 and "resume: done" in out, f"resumeMixtureCase finishes (exit {rc})")
+check("resumed with the drag state of the particles' restart" in
+      open(os.path.join(b, "log.mixflowCoupled")).read(),
+      "the resumed run kept the drag state of the particles' restart")
 if rc != 0:
     print(out[-3000:])
 check(not os.path.exists(later), "the later time directory is removed")
