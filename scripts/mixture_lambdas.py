@@ -16,7 +16,9 @@ postProcessing/mixture/mixture.h5:
   - median and 10 / 90 % quantiles of each lambda over those bins and all windows, with the counts;
   - lambda_u and lambda_w also as the weighted least-squares slope of u_f on u_s over the same bins
     (weights alpha_s (1 - alpha_s) times the bin's particle samples): a ratio of sums, which small
-    |u_s| cannot blow up.
+    |u_s| cannot blow up;
+  - the basal pore pressure under the initial column against hydrostatic, per window up to 1 s
+    (basal_pore_pressure).
 load() (the file's arrays) and wls_slope() are shared with scripts/calibrate_drifts.py.
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
@@ -66,7 +68,8 @@ def load(h5):
                "counts": {k: h["counts/" + k][()] for k in h["counts"].keys()} if "counts" in h
                else {},
                "windows": {k: h["windows/" + k][()] for k in h["windows"].keys()},
-               "attrs": {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h.attrs.items()}}
+               "attrs": {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h.attrs.items()},
+               "path": h5}
     return out
 
 
@@ -97,7 +100,40 @@ def summarise(h5):
     for lam, fs, ff in (("lambda_u", us, f["u_f"]), ("lambda_w", ws, f["w_f"])):
         m = flowing & np.isfinite(fs) & np.isfinite(ff)
         out[lam + "_wls_slope"] = wls_slope(fs[m], ff[m], w[m])
+    out["basal_pore_pressure"] = basal_pore_pressure(d)
     return out
+
+
+def basal_pore_pressure(d, t_max=1.0):
+    """The liquid pressure in the bottom bin row under the initial column (x < sample length)
+    against hydrostatic, per window up to T_MAX: excess = p_f - rho_l g (h_s - y_0), h_s the
+    liquid surface height of the bin column (sum of saturation x bin height; bins without fluid
+    samples take their neighbours' saturation). Mean over the x bins; Rondon et al. (2011): a
+    dense column's base is below hydrostatic while it dilates, a loose one's above."""
+    f, at = d["fields"], d["attrs"]
+    with h5py.File(d["path"], "r") as h:
+        x, y, ye = h["grid/x"][()], h["grid/y"][()], h["grid/y_edges"][()]
+    rho, g = float(at["liquid_density_kg_m3"]), 9.81
+    cols = np.nonzero(x < float(at["sample_length_m"]))[0]
+    dy = np.diff(ye)
+    rows = []
+    for w, (t0, t1) in enumerate(zip(d["windows"]["t0"], d["windows"]["t1"])):
+        if t1 > t_max + 1e-9:
+            break
+        excess, hydro = [], []
+        for i in cols:
+            sat, p0 = f["saturation"][w, :, i], f["p_f"][w, 0, i]
+            ok = np.isfinite(sat)
+            if not ok.any() or not np.isfinite(p0):
+                continue
+            sat = np.interp(np.arange(sat.size), np.nonzero(ok)[0], sat[ok])
+            hs = float(np.sum(sat * dy))
+            hydro.append(rho * g * (hs - y[0]))
+            excess.append(p0 - hydro[-1])
+        if excess:
+            rows.append({"t0": float(t0), "t1": float(t1), "excess_Pa": float(np.mean(excess)),
+                         "hydrostatic_Pa": float(np.mean(hydro)), "columns": len(excess)})
+    return rows
 
 
 def main():
