@@ -4,7 +4,9 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "ContactTimes.h"
@@ -13,6 +15,7 @@
 #include "Observables.h"
 #include "Progress.h"
 #include "SampleFill.h"
+#include "SettleCheckpoint.h"
 #include "SettledSample.h"
 
 namespace mixflow::dem {
@@ -45,19 +48,35 @@ double DemDriver::simTime() const { return (lig_->step() - step0_) * dt_; }
 
 SettleReport DemDriver::settle() {
   const Scene& s = scene_;
-  const Fill fill = makeLooseFill(s);
-  const Box box = channelBox(s, fill.top);
-  const std::string dataFile = (fs::path(s.caseDir) / "dem" / "initial.data").string();
-  if (rank_ == 0) writeDataFile(dataFile, fill, s.particles, box);
-  MPI_Barrier(comm_);
-
-  if (rank_ == 0)
-    out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
-         << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
-         << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
-         << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
-
-  lig_->commands(sceneSetupCommands(s, dataFile, dt_));
+  const std::string fingerprint = fingerprintOf(settleInputs(s));
+  std::ostringstream note;  // find() reports an ignored checkpoint; rank 0 prints it
+  const std::optional<SettleCheckpoint> from = SettleCheckpoint::find(s.caseDir, fingerprint, note);
+  if (rank_ == 0) out_ << note.str();
+  double t = 0;
+  double top = 0;
+  if (from) {
+    // The box, atoms and gate as the checkpoint left them; the settling materials below.
+    lig_->commands(
+        resumeSetupCommands(s, (fs::path(s.caseDir) / from->restartFile).string(), dt_, true));
+    t = from->time;
+    top = s.sample.height;  // only sets the free-fall time, which has passed
+    if (rank_ == 0)
+      out_ << "[dem] settling continues from its checkpoint at t = " << fmt(t, 6) << " s ("
+           << SettleCheckpoint::statePath(s.caseDir) << ")" << std::endl;
+  } else {
+    const Fill fill = makeLooseFill(s);
+    top = fill.top;
+    const Box box = channelBox(s, fill.top);
+    const std::string dataFile = (fs::path(s.caseDir) / "dem" / "initial.data").string();
+    if (rank_ == 0) writeDataFile(dataFile, fill, s.particles, box);
+    MPI_Barrier(comm_);
+    if (rank_ == 0)
+      out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
+           << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
+           << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
+           << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
+    lig_->commands(sceneSetupCommands(s, dataFile, dt_));
+  }
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
   // off while settling: a constant rolling torque chatters at rest and keeps the sample from
   // settling.
@@ -65,9 +84,10 @@ SettleReport DemDriver::settle() {
 
   const double m = s.particles.mass(), d = s.particles.diameter;
   const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dt_));
-  const double tFall = std::sqrt(2.0 * fill.top / kG);
-  Progress progress("settle", 0.0, s.settle.maxTime, out_);
-  double t = 0;
+  const double tFall = std::sqrt(2.0 * top / kG);
+  const double every = s.settle.checkpointInterval;
+  double nextCheckpoint = every > 0 ? (std::floor(t / every + 1e-9) + 1) * every : 0;
+  Progress progress("settle", t, s.settle.maxTime, out_);
   bool converged = false;
   while (t < s.settle.maxTime) {
     lig_->run(nChunk);
@@ -82,6 +102,10 @@ SettleReport DemDriver::settle() {
       converged = true;
       break;
     }
+    if (every > 0 && t >= nextCheckpoint - 0.5 * dt_) {
+      writeSettleCheckpoint(t, fingerprint);
+      nextCheckpoint += every;
+    }
   }
   // Back to the real friction, and a short relaxation so the contacts carry it.
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
@@ -91,6 +115,8 @@ SettleReport DemDriver::settle() {
   lig_->run(nRelax);
   t += nRelax * dt_;
   SettleReport r = measureSample(t, converged);
+  MPI_Barrier(comm_);
+  if (rank_ == 0) SettleCheckpoint::remove(s.caseDir);  // the settled sample supersedes it
   if (rank_ == 0)
     out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
          << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
@@ -107,6 +133,16 @@ SettleReport DemDriver::settle() {
             "(youngModulusFactor) compact it"
          << std::endl;
   return r;
+}
+
+void DemDriver::writeSettleCheckpoint(double t, const std::string& fingerprint) {
+  SettleCheckpoint c;
+  c.time = t;
+  c.fingerprint = fingerprint;
+  c.restartFile = SettleCheckpoint::nextRestartFile(scene_.caseDir);
+  MPI_Barrier(comm_);  // every rank read the state before rank 0 replaces it
+  lig_->writeRestart((fs::path(scene_.caseDir) / c.restartFile).string());
+  if (rank_ == 0) c.write(scene_.caseDir);
 }
 
 SettleReport DemDriver::measureSample(double settleTime, bool converged) {

@@ -1,6 +1,6 @@
 // Runs a dry (particles-only) dam break on LIGGGHTS: loose fill, settling behind the gate, gate
-// removal at t = 0, collapse with outlet/top deletion, and the granular outputs of docs/model.md §8.
-// No fluid mesh is built and no fluid equation is solved for such a scene.
+// removal at t = 0, collapse with outlet/top deletion, and the granular outputs of docs/model.md
+// §8. No fluid mesh is built and no fluid equation is solved for such a scene.
 #pragma once
 
 #include <mpi.h>
@@ -42,6 +42,8 @@ class DemDriver {
   const std::string& outputDir() const { return outDir_; }
 
  private:
+  // The settle's checkpoint at t (SettleCheckpoint.h).
+  void writeSettleCheckpoint(double t, const std::string& fingerprint);
   double simTime() const;
   void writeResumeState(const CollapseReport& rep, bool profileDone);
   CollapseReport runCollapse(CollapseReport rep, bool profileDone, bool appendSeries);

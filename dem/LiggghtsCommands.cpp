@@ -141,7 +141,7 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
 }
 
 std::vector<std::string> resumeSetupCommands(const Scene& s, const std::string& restartFile,
-                                             double timeStep) {
+                                             double timeStep, bool withGate) {
   // Units, atom style, map, boundaries, box and atoms come back from the restart file.
   std::vector<std::string> c = {
       "processors " + s.dem.processors,
@@ -149,7 +149,7 @@ std::vector<std::string> resumeSetupCommands(const Scene& s, const std::string& 
       "newton off",
       "communicate single vel yes",
   };
-  for (auto& line : interactionCommands(s, timeStep, false)) c.push_back(line);
+  for (auto& line : interactionCommands(s, timeStep, withGate)) c.push_back(line);
   return c;
 }
 

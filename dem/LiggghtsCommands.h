@@ -45,6 +45,6 @@ std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& d
 
 // The same scene continued from a LIGGGHTS restart file written after the gate opened (no gate).
 std::vector<std::string> resumeSetupCommands(const Scene& s, const std::string& restartFile,
-                                             double timeStep);
+                                             double timeStep, bool withGate = false);
 
 }  // namespace mixflow::dem

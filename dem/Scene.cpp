@@ -55,7 +55,8 @@ void readParticles(const Dictionary& d, ParticleMaterial& p) {
 }
 
 void readSettle(const Dictionary& d, SettleSpec& s) {
-  d.allowOnly({"friction", "maxTime", "kineticTolerance", "fillSpacing", "relaxTime", "seed"});
+  d.allowOnly({"friction", "maxTime", "kineticTolerance", "fillSpacing", "relaxTime", "seed",
+               "checkpointInterval"});
   s.friction = d.scalarOr("friction", s.friction, Range::nonNegative());
   s.maxTime = d.scalarOr("maxTime", s.maxTime, Range::positive());
   s.kineticTolerance = d.scalarOr("kineticTolerance", s.kineticTolerance, Range::positive());
@@ -63,6 +64,8 @@ void readSettle(const Dictionary& d, SettleSpec& s) {
   s.fillSpacing = d.scalarOr("fillSpacing", s.fillSpacing, Range::closed(1.02, 2.0));
   s.relaxTime = d.scalarOr("relaxTime", s.relaxTime, Range::nonNegative());
   s.seed = d.integerOr("seed", s.seed, 1, 900000000);
+  s.checkpointInterval =
+      d.scalarOr("checkpointInterval", s.checkpointInterval, Range::nonNegative());
 }
 
 void readDem(const Dictionary& d, DemSpec& m) {

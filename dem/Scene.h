@@ -46,6 +46,7 @@ struct SettleSpec {
   double fillSpacing = 1.15;       // lattice spacing of the initial loose fill, in diameters
   double relaxTime = 0.05;         // s with the real friction before the gate opens
   long seed = 12345;
+  double checkpointInterval = 0;  // s of settling between checkpoints (SettleCheckpoint.h); 0: none
 };
 
 struct DemSpec {

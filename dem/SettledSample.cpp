@@ -48,6 +48,10 @@ std::string settleInputs(const Scene& s) {
   addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
   out << "# settling: check every " << kSettleCheckInterval << " s, at most " << s.settle.maxTime
       << " s, until the mean kinetic energy < " << s.settle.kineticTolerance << " m g d\n";
+  // A checkpoint's restart write re-runs LIGGGHTS' setup, which changes the trajectory at
+  // round-off: samples settled with and without checkpoints are not the same sample.
+  if (s.settle.checkpointInterval > 0)
+    out << "# checkpoints every " << s.settle.checkpointInterval << " s\n";
   out << "# then the real materials, relaxed for " << s.settle.relaxTime << " s\n";
   addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
                                  s.particles.rollingFriction));

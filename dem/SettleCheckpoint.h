@@ -1,0 +1,32 @@
+// A settle's checkpoint (demDict settle.checkpointInterval > 0): every interval of simulated
+// settling the particles' LIGGGHTS restart and dem/settle.checkpoint.state (its time, which of two
+// restart files holds it, and the fingerprint of the settling inputs, SettledSample.h). A settle
+// that finds the checkpoint of the same inputs continues from it instead of starting again; the
+// settled sample removes it. The two restart files alternate, so a run killed while writing one
+// keeps the other and the state that names it.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace mixflow::dem {
+
+struct SettleCheckpoint {
+  double time = 0;          // s of settling
+  std::string restartFile;  // relative to the case directory
+  std::string fingerprint;  // of the settling inputs it was made from
+
+  static std::string statePath(const std::string& caseDir);
+  // The next checkpoint's restart file (not the one the current state names).
+  static std::string nextRestartFile(const std::string& caseDir);
+  // The checkpoint of this fingerprint, if any; one of other inputs is reported on `out` and
+  // ignored (the settle then starts again and replaces it).
+  static std::optional<SettleCheckpoint> find(const std::string& caseDir,
+                                              const std::string& fingerprint, std::ostream& out);
+  // Written to a temporary file, then renamed (never half-written).
+  void write(const std::string& caseDir) const;
+  static void remove(const std::string& caseDir);
+};
+
+}  // namespace mixflow::dem
