@@ -185,7 +185,10 @@ std::string fvSchemes(const LiquidCase& c) {
          ";\n"
          "    div(phi,alpha)  Gauss vanLeer;\n"
          "    div(phirb,alpha) Gauss linear;\n"
-         "    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;\n}\n"
+         "    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;\n" +
+         // The bulk model's drift stress (mixflowBulkFoam bulkDriftStress.H).
+         std::string(c.bulkModel() ? "    div(tauD) Gauss linear;\n" : "") +
+         "}\n"
          "laplacianSchemes { default Gauss linear corrected; }\n"
          "interpolationSchemes { default linear; }\n"
          "snGradSchemes { default corrected; }\n";

@@ -15,6 +15,8 @@ cohesive-arrest  lambda = 1, alpha_s 0.6, tanPhi 0 and a cohesion tau_c: the mix
               stress tau_eff = 50 Pa; its arrested length must be within 10 % of the shallow
               theory h(x) = sqrt(2 tau_eff (x_f - x) / (rho* g)) holding the column's area, and
               the kinetic energy must never exceed the potential energy released (no restart).
+drifting      lambda_u = lambda_w = 1.3 on the newtonian mixture: the drift stress runs, the mixture
+              volume balance stays <= 1e-6 and the front differs from lambda = 1's.
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
@@ -152,7 +154,26 @@ def bad_input(a, work):
     return ok
 
 
-SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian,
+def drifting(a, work):
+    """Drifts lambda_u = lambda_w = 1.3 (about W&P's calibrated ones) on the newtonian scenario's
+    mixture: the drift stress runs end to end, keeps the mixture volume (a momentum source only)
+    and changes the flow against lambda = 1."""
+    solid = "solid { viscosity 2e-3; tanPhi 0; cohesion 0; }\n"
+    ref = bulk_case(work, "bulk_no_drift", WATER, solid, 0.3)
+    drift = bulk_case(work, "bulk_drift", WATER,
+                      solid + "drifts { lambdaU 1.3; lambdaW 1.3; lambdaP 1; }\n", 0.3)
+    sr = lc.run_case(a, ref, solver=a.bulk_solver)
+    sd = lc.run_case(a, drift, solver=a.bulk_solver)
+    bal = max(abs(r["volume_balance"]) for r in sd)
+    ok = lc.check(bal <= 1e-6, f"mixture volume balance with drifts max {bal:.2e} (<= 1e-6)")
+    fr, fd = sr[-1]["front_bed_m"], sd[-1]["front_bed_m"]
+    ok &= lc.check(abs(fd - fr) > 1e-3 * fr,
+                   f"the drift stress changes the front at {sd[-1]['time_s']:.2f} s: {fd:.5f} m "
+                   f"against {fr:.5f} m with lambda = 1")
+    return ok
+
+
+SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input}
 
 

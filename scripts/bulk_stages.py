@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""The bulk model at two calibration stages against the CFD-DEM reference, per mixture scene.
+
+usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
+          [--reference runs/reference] [--work runs/bulk-stages] [--out results/bulk_model/stages.json]
+
+For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
+cfdDict.cellSize=...`) run as it is (stage A: lambda = 1, the default solid rheology), then the same
+case with the constant drifts calibrated from the CFD-DEM reference run's extraction (stage B:
+`scripts/calibrate_drifts.py REFERENCE/<scene> --target CASE --flowing-factor F`, weighted least
+squares; the
+reference run needs postProcessing/mixture/mixture.h5, e.g. from scripts/mixture_lambdas.py) and
+run again (`./Allrun`). Against the reference's granular front at the end (its
+postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
+and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
+"""
+
+import argparse
+import csv
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def env():
+    e = dict(os.environ, MIXFLOW_ROOT=ROOT)
+    e["PATH"] = os.path.join(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")),
+                             "bin") + os.pathsep + e.get("PATH", "")
+    return e
+
+
+def last(path, column):
+    with open(path) as f:
+        rows = list(csv.DictReader(ln for ln in f if ln.strip() and not ln.startswith("#")))
+    return float(rows[-1]["time_s"]), float(rows[-1][column])
+
+
+def cpu(case):
+    t = None
+    with open(os.path.join(case, "log.mixflowBulkFoam")) as f:
+        for line in f:
+            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
+            if m:
+                t = float(m.group(1))
+    return t
+
+
+def run(cmd, cwd=None, fatal=True):
+    """Runs CMD; its output, or (not fatal) None after printing why it failed."""
+    print("+ " + " ".join(cmd), flush=True)
+    r = subprocess.run(cmd, cwd=cwd, env=env(), capture_output=True, text=True)
+    if r.returncode != 0:
+        msg = f"bulk_stages: {' '.join(cmd)} failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}"
+        if fatal:
+            sys.exit(msg)
+        print(msg, flush=True)
+        return None
+    return r.stdout
+
+
+def result(case, ref_front):
+    t, front = last(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
+    return {"time_s": t, "front_m": front, "front_error": front / ref_front - 1,
+            "solver_cpu_s": cpu(case)}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default="W+P,HB+P,B+P")
+    ap.add_argument("--cell-size", default="0.075")
+    ap.add_argument("--flowing-factor", default="0.02",
+                    help="calibrate_drifts.py --flowing-factor: 0.02 sqrt(g H) = 0.049 m/s, the "
+                    "flowing rule of results/yield_stress/lambdas.json (|u_s| >= 0.05 m/s)")
+    ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model", "stages.json"))
+    a = ap.parse_args()
+    out = {"command": "/usr/bin/python3 scripts/bulk_stages.py " + " ".join(sys.argv[1:]),
+           "cell_size_m": float(a.cell_size), "scenes": {}}
+    for scene in a.scenes.split(","):
+        ref = os.path.join(a.reference, scene)
+        t_ref, ref_front = last(os.path.join(ref, "postProcessing", "dem", "timeSeries.csv"),
+                                "front_x_m")
+        work = os.path.join(a.work, "A")
+        shutil.rmtree(os.path.join(work, scene), ignore_errors=True)
+        run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
+             "--scenes", scene, "--work", work, "--set", f"cfdDict.cellSize={a.cell_size}"])
+        case_a = os.path.join(work, scene)
+        rec = {"cfd_dem_front_m": ref_front, "cfd_dem_time_s": t_ref, "A": result(case_a, ref_front)}
+        case_b = os.path.join(a.work, "B", scene)
+        shutil.rmtree(case_b, ignore_errors=True)
+        os.makedirs(os.path.dirname(case_b), exist_ok=True)
+        shutil.copytree(case_a, case_b, ignore=lambda d, names: [
+            n for n in names if d == case_a and (n in ("postProcessing", "VTK", ".done") or
+                                                  n.startswith(("log.", "processor", "previous-run")) or
+                                                  (re.fullmatch(r"[0-9.eE+-]+", n) and n != "0"))])
+        cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
+                   "--target", case_b, "--flowing-factor", a.flowing_factor], fatal=False)
+        out["scenes"][scene] = rec
+        if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
+            rec["B"] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
+            print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A {rec['A']['front_m']:.3f} m "
+                  f"({100 * rec['A']['front_error']:+.0f} %); stage B not run", flush=True)
+            continue
+        rec["B_calibration"] = cal.strip().splitlines()[-12:]
+        with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
+            rec["B_drifts"] = json.load(f)
+        run(["./Allrun", "1"], cwd=case_b)
+        rec["B"] = result(case_b, ref_front)
+        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A {rec['A']['front_m']:.3f} m "
+              f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
+              f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU {rec['A']['solver_cpu_s']} / "
+              f"{rec['B']['solver_cpu_s']} s", flush=True)
+    os.makedirs(os.path.dirname(a.out), exist_ok=True)
+    with open(a.out, "w") as f:
+        json.dump(out, f, indent=1)
+        f.write("\n")
+    print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()
