@@ -33,7 +33,7 @@ import time
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_liquid_cases, a test driver
 import run_liquid_cases as liquid_cases  # noqa: E402  (write_case: the liquid tests' case writer)
 
 RHO, DX, DT = 1000.0, 0.005, 1e-3

@@ -35,7 +35,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))
+sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))  # run_liquid_cases, a test driver
 import run_liquid_cases as rlc  # noqa: E402
 
 SIDE = rlc.MM_SIDE

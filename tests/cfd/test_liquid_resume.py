@@ -31,7 +31,8 @@ import sys
 import time
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
 
 root, bindir, work = (os.path.abspath(a) for a in sys.argv[1:4])
 ranks = int(sys.argv[4]) if len(sys.argv) > 4 else 1

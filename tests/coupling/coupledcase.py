@@ -2,7 +2,7 @@
 all faces no-slip walls, y up, g = (0, -9.81, 0)) filled with liquid or part liquid/part air,
 plus constant/couplingProperties and the particle scene as LIGGGHTS commands (system/in.liggghts).
 
-Standard library only; OpenFOAM file helpers come from tests/cfd/foamcase.py.
+Standard library only; OpenFOAM file helpers come from python/mixflow/foamcase.py.
 """
 
 import csv
@@ -12,8 +12,8 @@ import shutil
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cfd"))
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
 
 G = 9.81
 
