@@ -65,7 +65,7 @@ def observables(case, end):
     dem = os.path.join(case, outputs.DEM_SERIES)
     liq = os.path.join(case, outputs.LIQUID_SERIES)
     g0, l0 = last_row_at(dem, 0.0), last_row_at(liq, 0.0)
-    with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+    with open(os.path.join(case, outputs.EXCHANGE)) as f:
         ex = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
     for t in (0.5 * end, end):
         g, lq = last_row_at(dem, t), last_row_at(liq, t)
@@ -236,10 +236,10 @@ def main():
         c_cpl = float(m.group(1))
         m = re.search(r"inside LIGGGHTS runs ([0-9.eE+-]+) s", out)
         dem_s = float(m.group(1)) if m else float("nan")
-        with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+        with open(os.path.join(case, outputs.EXCHANGE)) as f:
             rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
         coupling_s = sum(float(r["seconds"]) for r in rows)
-        summ = json.load(open(os.path.join(case, "postProcessing", "dem", "summary.json")))
+        summ = json.load(open(os.path.join(case, outputs.DEM_SUMMARY)))
         c_replay = dry_replay(case)
         with open(os.path.join(case, "system", "in.liggghts")) as f:
             dem_step = float(re.search(r"^timestep\s+(\S+)", f.read(), re.M).group(1))

@@ -26,14 +26,10 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow import outputs  # noqa: E402
 from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival  # noqa: E402
 from mixflow.outputs import interpolated as at  # noqa: E402
+from mixflow.outputs import series  # noqa: E402  (series(case): the liquid time series)
 from mixflow.paper import L_SLUMP, PAPER_SUBCRITICAL, T_SLUMP  # noqa: E402
-
-
-def series(case):
-    return outputs.series(case, "liquid")
 
 
 def calibrate(case, t):
