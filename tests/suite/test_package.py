@@ -27,14 +27,10 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 import suite  # noqa: E402
 from mixflow import foamcase, foamdict, outputs, paper  # noqa: E402
+from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
-
-
-def check(cond, what):
-    failures.extend([] if cond else [what])
-    print(("ok   " if cond else "FAIL ") + what)
-
+check = checker(failures)
 
 work = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "/tmp/test_package")
 shutil.rmtree(work, ignore_errors=True)
