@@ -25,6 +25,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import outputs  # noqa: E402
 
 
 def last_execution_time(log):
@@ -54,9 +56,9 @@ def end_state(case):
     """(simulated end time, granular front x) at the last output row: CFD-DEM's grains
     (postProcessing/dem/timeSeries.csv front_x_m), the bulk model's mixture on the bed
     (postProcessing/liquid/timeSeries.csv front_bed_m)."""
-    dem = os.path.join(case, "postProcessing", "dem", "timeSeries.csv")
+    dem = os.path.join(case, outputs.DEM_SERIES)
     path, key = (dem, "front_x_m") if os.path.isfile(dem) else \
-        (os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
+        (os.path.join(case, outputs.LIQUID_SERIES), "front_bed_m")
     with open(path) as f:
         rows = list(csv.DictReader(ln for ln in f if ln.strip() and not ln.startswith("#")))
     return float(rows[-1]["time_s"]), float(rows[-1][key])

@@ -35,10 +35,9 @@ import tempfile
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-import suite  # noqa: E402  (OpenFOAM-style dictionary editor)
+sys.path.insert(0, os.path.join(ROOT, "python"))
 from dem_driver_vs_liggghts import timed as _timed  # noqa: E402
+from mixflow import foamdict, outputs  # noqa: E402
 
 
 def timed(cmd, cwd):
@@ -47,9 +46,8 @@ def timed(cmd, cwd):
 
 
 def set_entry(path, key, value):
-    """Sets a top-level entry with the suite's dictionary editor (scripts/suite.py)."""
-    text, _ = suite.edit_dict(open(path).read(), {key: value}, note="bench")
-    open(path, "w").write(text)
+    """Sets (or inserts) a top-level entry with the dictionary editor (mixflow.foamdict)."""
+    foamdict.edit_file(path, {key: value}, note="bench")
 
 
 def last_row_at(path, t):
@@ -64,10 +62,10 @@ def observables(case, end):
     in a small scene), and integral ones: the particles' and the liquid's potential energy released
     since t = 0, the particles' kinetic energy and their mean x."""
     out = {}
-    dem = os.path.join(case, "postProcessing", "dem", "timeSeries.csv")
-    liq = os.path.join(case, "postProcessing", "liquid", "timeSeries.csv")
+    dem = os.path.join(case, outputs.DEM_SERIES)
+    liq = os.path.join(case, outputs.LIQUID_SERIES)
     g0, l0 = last_row_at(dem, 0.0), last_row_at(liq, 0.0)
-    with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+    with open(os.path.join(case, outputs.EXCHANGE)) as f:
         ex = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
     for t in (0.5 * end, end):
         g, lq = last_row_at(dem, t), last_row_at(liq, t)
@@ -104,11 +102,8 @@ def dry_replay(case):
 
 def edit(path, overrides):
     """Set (or insert, creating blocks) the entries of OVERRIDES in the dictionary file PATH,
-    with suite.py's editor (the one behind its --set)."""
-    with open(path) as f:
-        text, _ = suite.edit_dict(f.read(), overrides, note="bench", create_blocks=True)
-    with open(path, "w") as f:
-        f.write(text)
+    with the dictionary editor (mixflow.foamdict, the one behind suite.py's --set)."""
+    foamdict.edit_file(path, overrides, note="bench", create_blocks=True)
 
 
 def main():
@@ -181,7 +176,7 @@ def main():
                          ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
         if value:
             set_entry(dem_dict, entry, repr(value))
-    props = suite.read_dict(cp)
+    props = foamdict.read_dict(cp)
     everies = [int(n) for n in a.exchange_every.split(",")] if a.exchange_every else \
         [int(props["exchangeEvery"])]
     # The dry twin: same particles, walls, DEM settings; no liquid.
@@ -241,10 +236,10 @@ def main():
         c_cpl = float(m.group(1))
         m = re.search(r"inside LIGGGHTS runs ([0-9.eE+-]+) s", out)
         dem_s = float(m.group(1)) if m else float("nan")
-        with open(os.path.join(case, "postProcessing", "coupling", "exchange.csv")) as f:
+        with open(os.path.join(case, outputs.EXCHANGE)) as f:
             rows = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
         coupling_s = sum(float(r["seconds"]) for r in rows)
-        summ = json.load(open(os.path.join(case, "postProcessing", "dem", "summary.json")))
+        summ = json.load(open(os.path.join(case, outputs.DEM_SUMMARY)))
         c_replay = dry_replay(case)
         with open(os.path.join(case, "system", "in.liggghts")) as f:
             dem_step = float(re.search(r"^timestep\s+(\S+)", f.read(), re.M).group(1))
@@ -279,7 +274,7 @@ def main():
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,
         "n_correctors": a.n_correctors, "drag_viscosity_max": vmaxes,
-        "dem_dict": {k: v for k, v in suite.read_dict(dem_dict).items()
+        "dem_dict": {k: v for k, v in foamdict.read_dict(dem_dict).items()
                      if k in ("youngModulusFactor", "timeStep", "rayleighFraction")},
         "simulated_s": a.end, "particles": done[0]["particles"] if done else None,
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry,

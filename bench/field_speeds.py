@@ -13,8 +13,8 @@ import sys
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import foamcase as fc  # noqa: E402
 
 
 def speeds(case):

@@ -21,8 +21,9 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
-import foamcase as fc  # noqa: E402  (shared case helpers of the CFD tests)
+sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_dambreak_vs_interfoam, a test driver
+from mixflow import foamcase as fc  # noqa: E402  (shared case helpers of the CFD tests)
 from run_dambreak_vs_interfoam import prepare  # noqa: E402
 
 TUTORIAL = "tutorials/multiphase/interFoam/laminar/damBreak/damBreak"

@@ -33,8 +33,10 @@ import time
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_liquid_cases, a test driver
 import run_liquid_cases as liquid_cases  # noqa: E402  (write_case: the liquid tests' case writer)
+from mixflow import outputs  # noqa: E402
 
 RHO, DX, DT = 1000.0, 0.005, 1e-3
 
@@ -60,11 +62,10 @@ def run(cmd, case, log, timeout=None):
 
 
 def series(case):
-    path = os.path.join(case, "postProcessing/liquid/timeSeries.csv")
+    path = os.path.join(case, outputs.LIQUID_SERIES)
     if not os.path.exists(path):
         return []
-    with open(path) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    return outputs.read_series(path)
 
 
 def one_run(a, work, mu, ncorr):

@@ -15,20 +15,15 @@ import argparse
 import csv
 import json
 import os
+import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow.outputs import nearest as at  # noqa: E402
+from mixflow.outputs import series  # noqa: E402  (series(case): the liquid time series)
 SCENES = {"W&P": "W+P", "HB&P": "HB+P", "B&P": "B+P"}
 L = 0.9  # sample length (m): fronts are reported as positions x from the back wall
 TIMES = (0.5, 1.0, 1.5, 2.0, 3.0)
-
-
-def series(case):
-    with open(os.path.join(case, "postProcessing/liquid/timeSeries.csv")) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def at(rows, key, t):
-    return min(rows, key=lambda r: abs(r["time_s"] - t))[key]
 
 
 def main():

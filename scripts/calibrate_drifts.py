@@ -28,11 +28,11 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from mixflow.foamdict import DictError, edit_dict, format_dict, parse_dict  # noqa: E402
+from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
-from suite import DictError, edit_dict, format_dict, parse_dict  # noqa: E402
 
-G = 9.81
 H5_IN_CASE = os.path.join("postProcessing", "mixture", "mixture.h5")
 # drift -> (bulkProperties key, the extractor's mask, solid and fluid quantity names)
 DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
@@ -262,7 +262,7 @@ def _solid_fraction(target, tree, res):
 
 def bulk_properties_text(path, drifts, source, solid_fraction=None):
     """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; lambdaP; source; }
-    set through suite.edit_dict: every other byte of an existing file stays as it is."""
+    set through foamdict.edit_dict: every other byte of an existing file stays as it is."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
     entries["source"] = '"' + source.replace('"', "'") + '"'
     if not os.path.exists(path):

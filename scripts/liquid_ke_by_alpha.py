@@ -16,9 +16,8 @@ import sys
 import numpy as np
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "tests/cfd"))
-from foamcase import read_internal_field  # noqa: E402  (the tests' ASCII field reader)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from mixflow.foamcase import read_internal_field  # noqa: E402  (the tests' ASCII field reader)
 
 
 def read_field(path):

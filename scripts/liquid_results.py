@@ -20,57 +20,16 @@ the section is below minDepth (half a cell).
 """
 
 import argparse
-import csv
 import json
 import math
 import os
 import sys
 
-SECTION_X = 1.38
-HOLD_S = 0.2
-T_SLUMP = {"HB-I": 4.374e-4, "B-I": 4.376}  # Li & Zhao's time scales (s)
-L_SLUMP = {"HB-I": 0.5, "B-I": 0.4}
-PAPER_SUBCRITICAL = {"W": 1.2, "HB": 1.1, "B": 1.0}
-
-
-def series(case):
-    with open(os.path.join(case, "postProcessing/liquid/timeSeries.csv")) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def at(rows, key, t):
-    for r0, r1 in zip(rows, rows[1:]):
-        if r0["time_s"] <= t <= r1["time_s"]:
-            w = (t - r0["time_s"]) / (r1["time_s"] - r0["time_s"]) if r1["time_s"] > r0["time_s"] \
-                else 0.0
-            return (1 - w) * r0[key] + w * r1[key]
-    return float("nan")
-
-
-def first_time(rows, cond):
-    for r in rows:
-        if cond(r):
-            return r["time_s"]
-    return None
-
-
-def subcritical_after_arrival(rows):
-    t0 = first_time(rows, lambda r: r["front_bed_m"] >= SECTION_X)
-    if t0 is None:
-        return None, None
-    return t0, subcritical_from(rows, t0)
-
-
-def subcritical_from(rows, t0):
-    """First time after t0 from which Fr < 1 holds for HOLD_S (or to the end), or None."""
-    after = [r for r in rows if r["time_s"] >= t0 and not math.isnan(r["section_froude"])]
-    for i, r in enumerate(after):
-        if r["section_froude"] < 1:
-            hold = [q for q in after[i:] if q["time_s"] <= r["time_s"] + HOLD_S]
-            if all(q["section_froude"] < 1 for q in hold) and (
-                    hold[-1]["time_s"] >= r["time_s"] + HOLD_S - 0.05 or hold[-1] is after[-1]):
-                return r["time_s"]
-    return None
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival  # noqa: E402
+from mixflow.outputs import interpolated as at  # noqa: E402
+from mixflow.outputs import series  # noqa: E402  (series(case): the liquid time series)
+from mixflow.paper import L_SLUMP, PAPER_SUBCRITICAL, T_SLUMP  # noqa: E402
 
 
 def calibrate(case, t):

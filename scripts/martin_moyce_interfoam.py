@@ -35,8 +35,10 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))  # run_liquid_cases, a test driver
 import run_liquid_cases as rlc  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 SIDE = rlc.MM_SIDE
 
@@ -126,7 +128,7 @@ def main():
           f"interFoam {t_if:.1f} s ({len(itf) - 1} steps)")
     print(f"inputs differing between the cases: {differing_inputs(mix_case, if_case)} "
           "(system/controlDict: the libs entry)")
-    same = filecmp.cmp(*(os.path.join(c, "postProcessing/liquid/timeSeries.csv")
+    same = filecmp.cmp(*(os.path.join(c, outputs.LIQUID_SERIES)
                          for c in (mix_case, if_case)), shallow=False)
     print(f"timeSeries.csv byte-identical: {same}")
     # Per step where the step times coincide (they do when the runs agree), else on a 0.01 grid.

@@ -5,7 +5,7 @@ suite work directory, and summary.json with the paper's numbers beside ours.
 
 Rules (the same as scripts/report.py, whose readers it uses):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
-    the first time after t0 from which Fr < 1 holds for HOLD_S (scripts/liquid_results.py), minus t0.
+    the first time after t0 from which Fr < 1 holds for HOLD_S (python/mixflow/froude.py), minus t0.
     Coarse mixture meshes thin the front below alpha = 0.5 before the section; then the arrival is
     the first time the section holds liquid (a defined Froude number), labelled as such.
   - Savage collisional interval: the longest run of savage_paper > 0.1 at x = 0.8 m (Eq. 16 as
@@ -21,13 +21,14 @@ import sys
 import numpy as np
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import report  # noqa: E402
 import suite  # noqa: E402
-from liquid_results import SECTION_X, first_time, subcritical_from  # noqa: E402
+from mixflow.froude import first_time, subcritical_from  # noqa: E402
+from mixflow.paper import PAPER, PAPER_NAME, SECTION_X  # noqa: E402
 
-PAPER_SUBCRITICAL = {"W&P": 0.6, "HB&P": 0.3, "B&P": 0.5}
-PAPER_SAVAGE_B = [0.28, 1.1]
+PAPER_SUBCRITICAL = {PAPER_NAME[n]: PAPER["subcritical"][n] for n in report.MIXTURES}
+PAPER_SAVAGE_B = list(PAPER["savage_interval_BP"])
 
 
 def arrival_and_subcritical(s):

@@ -23,28 +23,16 @@ import traceback
 import numpy as np
 
 sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import suite  # noqa: E402  (scene list, dictionary reader)
-from liquid_results import (HOLD_S, L_SLUMP, PAPER_SUBCRITICAL, SECTION_X, T_SLUMP,  # noqa: E402
-                            at, first_time, subcritical_after_arrival)
+from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival  # noqa: E402
+from mixflow.outputs import interpolated as at, read_rows  # noqa: E402
+from mixflow.paper import D_P, G, L_SLUMP, PAPER, PAPER_NAME, SECTION_X, T_SLUMP  # noqa: E402
 from runout_fit import fit_power_law, thickness_front  # noqa: E402
 
-G = 9.81
-D_P = 0.024
-PAPER_NAME = {s: s.replace("+", "&") for s in suite.TABLE1}
 MIXTURES = ["W+P", "HB+P", "B+P"]
 LIQUIDS = ["W", "HB", "B"]
 DRY_SERIES = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V"]
-PAPER = {
-    "subcritical": {"W": 1.2, "HB": 1.1, "B": 1.0, "W+P": 0.6, "HB+P": 0.3, "B+P": 0.5},
-    "alpha": 0.9884,
-    "back_wall": {"HB": (0.811, 0.465), "HB+P": (0.997, 0.894)},
-    "savage_interval_BP": (0.28, 1.1),
-    "liquid_stage_change_s": 2.3,
-    "granular_stage_change_s": 0.95,
-    "outflow_starts_s": {"W": 1.25, "W+P": 1.39},
-}
-assert {k: PAPER["subcritical"][k] for k in LIQUIDS} == PAPER_SUBCRITICAL
 STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),
          "W+P": ("C0", "--"), "HB+P": ("C1", "--"), "B+P": ("C2", "--"),
          "HB-I": ("C1", "-"), "B-I": ("C2", "-")}
@@ -52,28 +40,6 @@ STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),
 
 # --------------------------------------------------------------------------------------------
 # Reading the outputs
-
-def read_rows(path):
-    """CSV (lines starting with # skipped) -> list of dicts of floats (text kept if not a number)."""
-    with open(path) as f:
-        lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
-    if not lines:
-        return []
-    keys = lines[0].strip().split(",")
-    rows = []
-    for ln in lines[1:]:
-        vals = ln.strip().split(",")
-        if len(vals) != len(keys):
-            continue  # a row being written
-        row = {}
-        for k, v in zip(keys, vals):
-            try:
-                row[k] = float(v)
-            except ValueError:
-                row[k] = math.nan if v == "" else v  # a blank cell: no value at that time
-        rows.append(row)
-    return rows
-
 
 def col(rows, key):
     return np.array([r.get(key, np.nan) for r in rows], dtype=float)

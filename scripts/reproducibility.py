@@ -30,9 +30,9 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
-import suite  # noqa: E402
+from mixflow import foamdict, outputs  # noqa: E402
 
 PERTURBATION = 1e-12
 QUANTITIES = {"granular_front_m": ("dem", "front_x_m"),
@@ -54,8 +54,8 @@ def make_case(work, scene, label, density_factor=1.0):
     liquid = open(os.path.join(ROOT, "cases", scene, "constant", "sceneProperties")).read()
     text = text[:text.index("liquid   //")] + liquid[liquid.index("liquid   //"):]
     if density_factor != 1.0:
-        rho = float(suite.parse_dict(text)["liquid"]["density"])
-        text, _ = suite.edit_dict(text, {"liquid": {"density": repr(rho * density_factor)}},
+        rho = float(foamdict.parse_dict(text)["liquid"]["density"])
+        text, _ = foamdict.edit_dict(text, {"liquid": {"density": repr(rho * density_factor)}},
                                   note="round-off perturbation (scripts/reproducibility.py)")
     open(sp, "w").write(text)
     return d
@@ -74,7 +74,7 @@ def allrun(case, ranks, settled=None):
 
 
 def series(case, which, column):
-    path = os.path.join(case, "postProcessing", which, "timeSeries.csv")
+    path = os.path.join(case, outputs.SERIES[which])
     with open(path) as f:
         rows = list(csv.DictReader(ln for ln in f if ln.strip() and not ln.startswith("#")))
     return {round(float(r["time_s"]), 6): float(r[column]) for r in rows}

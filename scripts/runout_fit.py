@@ -17,6 +17,9 @@ import os
 import shutil
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from mixflow.paper import D_P  # noqa: E402
+
 
 def fit_power_law(a, r):
     """Least squares on log r = log lambda + alpha log a."""
@@ -48,7 +51,7 @@ def main():
         s = json.load(open(path))
         L = s["sample"]["length_m"]
         a = s["settled"]["height_m"] / L
-        thick = thickness_front(os.path.join(os.path.dirname(path), "depositProfile.csv"), L, 0.024)
+        thick = thickness_front(os.path.join(os.path.dirname(path), "depositProfile.csv"), L, D_P)
         rows.append({"case": s["case"], "H_m": s["sample"]["height_m"], "settled_height_m": s["settled"]["height_m"],
                      "a": a, "runout_m": s["runout_m"], "normalised_runout": s["runout_m"] / L,
                      "runout_thickness_m": thick - L, "normalised_runout_thickness": (thick - L) / L,

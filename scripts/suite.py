@@ -16,8 +16,6 @@ simulated time, wall time, estimated time to finish.
 --cost-only (the default of tier paper on a machine with fewer than 16 cores, unless --force)
 runs one scene per content (dry, liquid, mixture) for a short window, measures core-seconds per
 simulated second and writes WORK/cost.json with the extrapolated core-hours of every scene.
-
-The module also holds the OpenFOAM-dictionary reader/editor the tiers use (parse_dict, edit_dict).
 """
 
 import argparse
@@ -32,12 +30,15 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import outputs  # noqa: E402
+from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: E402,F401
+                              leaves, list_value, parse_dict, read_dict, unquote)
+from mixflow.paper import D_P, TABLE1  # noqa: E402
+
 CASES = os.path.join(ROOT, "cases")
 TIERS = os.path.join(CASES, "tiers")
 
-# Table 1 in the paper's order; directory names use '+' for the paper's '&'.
-TABLE1 = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V", "P", "W", "HB", "B", "HB-I", "B-I",
-          "W+P", "HB+P", "B+P"]
 # Files a tier may name (top-level blocks of a tier file) and where they are in a case.
 FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
          "controlDict": "system/controlDict", "sceneProperties": "constant/sceneProperties",
@@ -45,247 +46,12 @@ FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
 CONTENTS = ("particles", "liquid", "mixture")
 TIER_KEYS = {"FoamFile", "description", "contentSpecific", "scenes"} | set(FILES) | set(CONTENTS)
 # Outputs of a run (not copied from cases/, removed from nothing).
-OUTPUT_NAMES = ("postProcessing", "VTK", "dem", ".done", ".failed")
+OUTPUT_NAMES = (outputs.POST, "VTK", "dem", outputs.DONE, outputs.FAILED)
 # Time series whose last row is the simulated time reached, by content (first found counts).
-SERIES = {"particles": ["postProcessing/dem/timeSeries.csv"],
-          "liquid": ["postProcessing/liquid/timeSeries.csv"],
-          "mixture": ["postProcessing/dem/timeSeries.csv", "postProcessing/liquid/timeSeries.csv"]}
+SERIES = {"particles": [outputs.DEM_SERIES], "liquid": [outputs.LIQUID_SERIES],
+          "mixture": [outputs.DEM_SERIES, outputs.LIQUID_SERIES]}
 REPRESENTATIVE = {"particles": "P", "liquid": "W", "mixture": "W+P"}
 SETTLE_ESTIMATE_S = 1.1  # settling of a Table 1 column (results/runout_scaling: 1.07 s for P-I-I)
-
-
-class DictError(Exception):
-    """A dictionary that cannot be read or an override that cannot be applied."""
-
-
-# --------------------------------------------------------------------------------------------
-# OpenFOAM-style dictionaries: a reader that keeps positions, so that an edit changes only the
-# value it sets (comments, layout and every other entry stay as they are).
-
-def _tokens(text):
-    """(kind, start, end) with kind one of word, string, { } ; ( ); comments skipped."""
-    i, n = 0, len(text)
-    while i < n:
-        c = text[i]
-        if c.isspace():
-            i += 1
-        elif text.startswith("//", i):
-            j = text.find("\n", i)
-            i = n if j < 0 else j + 1
-        elif text.startswith("/*", i):
-            j = text.find("*/", i + 2)
-            if j < 0:
-                raise DictError(f"unterminated /* comment at character {i}")
-            i = j + 2
-        elif c == '"':
-            j = i + 1
-            while j < n and text[j] != '"':
-                j += 2 if text[j] == "\\" else 1
-            if j >= n:
-                raise DictError(f"unterminated string at character {i}")
-            yield "string", i, j + 1
-            i = j + 1
-        elif c in "{};()":
-            yield c, i, i + 1
-            i += 1
-        else:
-            j = i
-            while j < n and not text[j].isspace() and text[j] not in '{};()"' \
-                    and not text.startswith("//", j) and not text.startswith("/*", j):
-                j += 1
-            yield "word", i, j
-            i = j
-
-
-class _Entry:
-    def __init__(self, key, key_start, value_start, value_end):
-        self.key, self.key_start, self.value_start, self.value_end = key, key_start, value_start, value_end
-
-
-class _Block:
-    def __init__(self, key, key_start, open_pos):
-        self.key, self.key_start, self.open, self.close = key, key_start, open_pos, None
-        self.children = {}
-
-
-def _parse(text):
-    """The tree of blocks and entries of TEXT with their positions (the root's close = len)."""
-    toks = list(_tokens(text))
-    root = _Block("", 0, -1)
-    stack = [root]
-    i = 0
-    while i < len(toks):
-        kind, s, e = toks[i]
-        if kind == "}":
-            if len(stack) == 1:
-                raise DictError(f"unmatched '}}' on line {text.count(chr(10), 0, s) + 1}")
-            stack.pop().close = s
-            i += 1
-            continue
-        if kind not in ("word", "string"):
-            raise DictError(f"expected a keyword, found '{text[s:e]}' on line "
-                            f"{text.count(chr(10), 0, s) + 1}")
-        key = text[s:e]
-        if key.startswith("#"):  # directive (#include ...): to the end of its line
-            eol = text.find("\n", s)
-            eol = len(text) if eol < 0 else eol
-            while i < len(toks) and toks[i][1] < eol:
-                i += 1
-            continue
-        if i + 1 < len(toks) and toks[i + 1][0] == "{":
-            blk = _Block(key, s, toks[i + 1][1])
-            stack[-1].children[key] = blk
-            stack.append(blk)
-            i += 2
-            continue
-        j, depth = i + 1, 0
-        while j < len(toks) and not (toks[j][0] == ";" and depth == 0):
-            if toks[j][0] == "(":
-                depth += 1
-            elif toks[j][0] == ")":
-                depth -= 1
-            elif toks[j][0] in "{}":
-                raise DictError(f"entry '{key}' on line {text.count(chr(10), 0, s) + 1} has no ';'")
-            j += 1
-        if j >= len(toks):
-            raise DictError(f"entry '{key}' on line {text.count(chr(10), 0, s) + 1} has no ';'")
-        vs = toks[i + 1][1] if j > i + 1 else toks[j][1]
-        stack[-1].children[key] = _Entry(key, s, vs, toks[j][1])
-        i = j + 1
-    if len(stack) > 1:
-        raise DictError(f"block '{stack[-1].key}' is not closed")
-    root.close = len(text)
-    return root
-
-
-def _to_python(text, blk):
-    return {k: _to_python(text, c) if isinstance(c, _Block) else text[c.value_start:c.value_end].strip()
-            for k, c in blk.children.items()}
-
-
-def parse_dict(text):
-    """Nested dict of an OpenFOAM-style dictionary: blocks -> dicts, entries -> value strings."""
-    return _to_python(text, _parse(text))
-
-
-def read_dict(path):
-    try:
-        with open(path) as f:
-            return parse_dict(f.read())
-    except DictError as e:
-        raise DictError(f"{path}: {e}") from None
-
-
-def list_value(value):
-    """'(a b c)' -> ['a', 'b', 'c']."""
-    return value.strip().strip("()").split()
-
-
-def unquote(value):
-    v = value.strip()
-    return v[1:-1] if len(v) >= 2 and v[0] == v[-1] == '"' else v
-
-
-def _leaves(tree, prefix=()):
-    for k, v in tree.items():
-        if isinstance(v, dict):
-            yield from _leaves(v, prefix + (k,))
-        else:
-            yield prefix + (k,), v
-
-
-def _insertion(text, blk, line, comment=""):
-    """(position, text) that adds LINE (a statement, no newline) as the last one of block BLK."""
-    close = blk.close
-    line_start = text.rfind("\n", 0, close) + 1
-    if blk.open < 0:  # the file itself
-        return close, f"{'' if text.endswith(chr(10)) or not text else chr(10)}{line}{comment}\n"
-    if text[line_start:close].strip() == "":  # '}' alone on its line: indent one more
-        return line_start, f"{text[line_start:close]}    {line}{comment}\n"
-    return close, f"{line} "  # one-line block: before the '}'
-
-
-def _create_blocks(text, overrides):
-    """TEXT with an empty block added for every block of OVERRIDES it lacks."""
-    for path, _ in _leaves(overrides):
-        for depth in range(len(path) - 1):
-            blk = _parse(text)
-            for name in path[:depth]:
-                blk = blk.children[name]
-            if path[depth] not in blk.children:
-                pos, add = _insertion(text, blk, f"{path[depth]} {{ }}")
-                text = text[:pos] + add + text[pos:]
-    return text
-
-
-def edit_dict(text, overrides, note="", optional=lambda path: False, create_blocks=False):
-    """Sets every leaf of OVERRIDES (nested dict of value strings) in TEXT.
-
-    An entry that exists gets the new value (a comment on the rest of its line becomes
-    `// NOTE (case: OLD)` when the value changes); an absent entry is inserted at the end of its
-    block. A block that does not exist is an error (DictError naming the dotted path), unless
-    optional(path of the block) is true: then that override is skipped; with CREATE_BLOCKS it is
-    inserted instead.
-    Returns (new text, [(dotted key, value, action)]) with action set, kept, inserted or skipped.
-    """
-    if create_blocks:
-        text = _create_blocks(text, overrides)
-    root = _parse(text)
-    edits, actions = [], []
-    for path, value in _leaves(overrides):
-        blk, missing = root, None
-        for depth, name in enumerate(path[:-1]):
-            child = blk.children.get(name)
-            if isinstance(child, _Entry):
-                raise DictError(f"'{'.'.join(path[:depth + 1])}' is an entry, not a block")
-            if child is None:
-                missing = path[:depth + 1]
-                break
-            blk = child
-        dotted = ".".join(path)
-        if missing:
-            if optional(missing):
-                actions.append((dotted, value, "skipped"))
-                continue
-            raise DictError(f"no block '{'.'.join(missing)}' for '{dotted}'")
-        key = path[-1]
-        cur = blk.children.get(key)
-        if isinstance(cur, _Block):
-            raise DictError(f"'{dotted}' is a block, not an entry")
-        if cur is not None:
-            old = text[cur.value_start:cur.value_end].strip()
-            if old == value:
-                actions.append((dotted, value, "kept"))
-                continue
-            end = cur.value_end + 1
-            eol = text.find("\n", end)
-            eol = len(text) if eol < 0 else eol
-            rest = text[end:eol]
-            if note and rest.strip().startswith("//"):
-                pad = rest[:len(rest) - len(rest.lstrip())] or "   "
-                edits.append((end, eol, f"{pad}// {note} (case: {old})"))
-            edits.append((cur.value_start, cur.value_end, value))
-            actions.append((dotted, value, "set"))
-            continue
-        pos, add = _insertion(text, blk, f"{key} {value};", f"   // {note}" if note else "")
-        edits.append((pos, pos, add))
-        actions.append((dotted, value, "inserted"))
-    # Apply back to front; inserts at one position keep the order they were made in.
-    for _, (s, e, rep) in sorted(enumerate(edits), key=lambda x: (x[1][0], x[0]), reverse=True):
-        text = text[:s] + rep + text[e:]
-    return text, actions
-
-
-def format_dict(tree, indent=0):
-    """Nested dict of strings -> dictionary text."""
-    pad = " " * indent
-    out = []
-    for k, v in tree.items():
-        if isinstance(v, dict):
-            out.append(f"{pad}{k}\n{pad}{{\n{format_dict(v, indent + 4)}{pad}}}\n")
-        else:
-            out.append(f"{pad}{k} {v};\n")
-    return "".join(out)
 
 
 # --------------------------------------------------------------------------------------------
@@ -392,9 +158,9 @@ def tier_edits(case_dir, tier, scene):
         path = os.path.join(case_dir, rel)
         if not os.path.isfile(path):
             if tier.optional(fkey):
-                records += [(fkey, ".".join(p), v, "skipped") for p, v in _leaves(tree)]
+                records += [(fkey, ".".join(p), v, "skipped") for p, v in leaves(tree)]
                 continue
-            first = ".".join(next(iter(_leaves(tree)))[0])
+            first = ".".join(next(iter(leaves(tree)))[0])
             raise DictError(f"{tier.path}: entry '{fkey}.{first}': scene {scene} ({content}) has no "
                             f"{rel}; list '{fkey}' in contentSpecific if that is expected")
         with open(path) as f:
@@ -402,7 +168,7 @@ def tier_edits(case_dir, tier, scene):
         # A block named on the command line (--set FILE.block.entry=V) is created if the case
         # lacks it (e.g. DiFeliceDragCoeffs); a tier's own overrides must find theirs.
         if tier.sets.get(fkey):
-            text = _create_blocks(text, tier.sets[fkey])
+            text = add_missing_blocks(text, tier.sets[fkey])
         try:
             new, actions = edit_dict(text, tree, note=f"tier {tier.name}",
                                      optional=lambda blk, fk=fkey: tier.optional(fk, blk))
@@ -553,7 +319,7 @@ def _plan_scene(scene, work, tier, ranks):
     src = os.path.join(CASES, scene)
     run_dir = os.path.join(work, scene)
     p = {"scene": scene, "case": src, "run_dir": run_dir}
-    if os.path.isfile(os.path.join(run_dir, ".done")):
+    if os.path.isfile(os.path.join(run_dir, outputs.DONE)):
         p["status"] = "done"
         return p
     if not os.path.isdir(src) and not os.path.isdir(run_dir):
@@ -665,7 +431,7 @@ def progress_line(label, t, t_end, wall, first, now, state=None):
 
 def tag_summaries(run_dir, tier_name):
     """Adds "tier" to every postProcessing/*/summary.json of RUN_DIR."""
-    pp = os.path.join(run_dir, "postProcessing")
+    pp = os.path.join(run_dir, outputs.POST)
     for sub in sorted(os.listdir(pp)) if os.path.isdir(pp) else []:
         path = os.path.join(pp, sub, "summary.json")
         if os.path.isfile(path):
@@ -689,7 +455,7 @@ def run_scene(p, tier, ranks, label, progress_every, samples=None, poll=1.0):
             "simulated_s": sim_time(run_dir, p["content"]), "finished": time.strftime("%Y-%m-%d %H:%M:%S")}
     if ok:
         tag_summaries(run_dir, tier.name)
-        with open(os.path.join(run_dir, ".done"), "w") as f:
+        with open(os.path.join(run_dir, outputs.DONE), "w") as f:
             json.dump(info, f, indent=2)
     else:
         with open(os.path.join(run_dir, ".failed"), "w") as f:
@@ -713,7 +479,7 @@ def scene_size(case_dir, texts, content):
     L, H, W = (float(sp["sample"][k]) for k in ("length", "height", "width"))
     particles = cells = None
     if content in ("particles", "mixture"):
-        dp = float(sp.get("particles", {}).get("diameter", 0.024))
+        dp = float(sp.get("particles", {}).get("diameter", D_P))
         phi = float(sp["sample"].get("solidFraction", 0.6056))
         particles = phi * L * H * W / (math.pi / 6 * dp ** 3)
     if content in ("liquid", "mixture"):
@@ -795,7 +561,7 @@ def cost_run(args, tier, scenes, work):
         measured[content] = {"scene": rep, "simulated_s": sim, "wall_s": w1 - w0, "ranks": args.np,
                              "core_s_per_simulated_s": (w1 - w0) * args.np / sim,
                              "size": scene_size(run_dir, {}, content)}
-        summary = os.path.join(run_dir, "postProcessing", "dem", "summary.json")
+        summary = os.path.join(run_dir, outputs.DEM_SUMMARY)
         if os.path.isfile(summary):  # cost of one grain for one DEM step: compares tiers
             m = measured[content]
             with open(summary) as f:
@@ -924,7 +690,7 @@ def main(argv=None):
         if left and walls:
             mean = sum(walls.values()) / len(walls)
             print(f"  {len(left)} scene(s) left: about {hms(mean * len(left))} at the mean pace so far", flush=True)
-    done = [s for s in scenes if os.path.isfile(os.path.join(args.work, s, ".done"))]
+    done = [s for s in scenes if os.path.isfile(os.path.join(args.work, s, outputs.DONE))]
     missing = [p["scene"] for p in plans if p["status"] == "missing"]
     print(f"finished {len(done)}/{len(scenes)}" + (f"; failed: {', '.join(failed)}" if failed else "")
           + (f"; no case yet: {', '.join(missing)}" if missing else ""))

@@ -28,9 +28,9 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "python"))
 import report  # noqa: E402  (Scene and the report's derived numbers)
-from liquid_results import at  # noqa: E402
+from mixflow.outputs import interpolated as at  # noqa: E402
 
 TIMES = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5)  # default --times
 SCALARS = ("arrival_at_1.38m_s", "subcritical_after_arrival_s", "energy_excess_J_per_m")

@@ -52,9 +52,10 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
 import suite  # noqa: E402
+from mixflow.outputs import nearest as at, read_series as series  # noqa: E402
 
 H = 0.6  # the paper's column height (m)
 VARIANTS = {
@@ -211,15 +212,6 @@ def bed_sphere_checks(work, build, closures):
         else:
             checks["sphere_powerlaw_speed"] = failed_check(ref, 0.1, "m/s", x_src, why(r))
     return closures
-
-
-def series(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def at(rows, key, t):
-    return min(rows, key=lambda r: abs(r["time_s"] - t))[key]
 
 
 def observables(run_dir):

@@ -1,5 +1,5 @@
 """A synthetic CFD-DEM mixture case with known constant drifts for the calibration tests, made
-with tests/mixture_extract/synthcase.py and extracted with the real mixflowExtract (so the h5
+with python/mixflow/synthcase.py and extracted with the real mixflowExtract (so the h5
 layout is the extractor's own).
 
 Per (window, bin): u_f = LU u_s + e_u, w_f = LW w_s + e_w, p_f / rho_f = LP p_s / rho_s + e_p.
@@ -14,8 +14,8 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "mixture_extract"))
-import synthcase  # noqa: E402
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from mixflow import synthcase  # noqa: E402
 
 LU, LW, LP = 1.3, 0.8, 0.6
 SIGMA_U, SIGMA_W, SIGMA_P = 0.1, 0.02, 0.01  # m/s, m/s, m2/s2 (10 Pa of liquid pressure)

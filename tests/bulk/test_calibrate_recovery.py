@@ -14,13 +14,13 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(HERE, "..", "mixture_extract"))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts, mixture_lambdas
+sys.path.insert(0, os.path.join(ROOT, "python"))
 import calibrate_drifts as cd  # noqa: E402
 import drift_data as dd  # noqa: E402
+from mixflow.foamdict import read_dict, unquote  # noqa: E402
+from mixflow.synthcase import checker  # noqa: E402
 from mixture_lambdas import load  # noqa: E402
-from suite import read_dict, unquote  # noqa: E402
-from synthcase import checker  # noqa: E402
 
 
 def main():

@@ -1,4 +1,4 @@
-"""The bulkProperties writer of calibrate_drifts.py (suite.edit_dict underneath): an existing file
+"""The bulkProperties writer of calibrate_drifts.py (foamdict.edit_dict underneath): an existing file
 keeps every byte outside the drifts entries it sets, a missing drifts block is appended, a missing
 file is created, and drifts outside the bulk model's range are refused with nothing written.
 
@@ -9,11 +9,11 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(HERE, "..", "mixture_extract"))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts
+sys.path.insert(0, os.path.join(ROOT, "python"))
 import calibrate_drifts as cd  # noqa: E402
-from suite import parse_dict, read_dict, unquote  # noqa: E402
-from synthcase import checker  # noqa: E402
+from mixflow.foamdict import parse_dict, read_dict, unquote  # noqa: E402
+from mixflow.synthcase import checker  # noqa: E402
 
 BEFORE = """FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }
 // Bulk model of W+P: hand-tuned solid, drifts from an earlier calibration.

@@ -42,7 +42,8 @@ import re
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
 
 
 def prepare(template, case, end_time, setfields, blockmesh):

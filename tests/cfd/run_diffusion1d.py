@@ -28,7 +28,8 @@ import re
 import shutil
 import sys
 
-from foamcase import (fail, launcher_tokens, read_internal_field, require_foam_env, run,
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow.foamcase import (fail, launcher_tokens, read_internal_field, require_foam_env, run,
                       set_decomposition, set_entry, time_dirs)
 
 

@@ -74,7 +74,6 @@ Exit status 0 = pass, 1 = fail. Standard library only.
 """
 
 import argparse
-import csv
 import math
 import os
 import re
@@ -83,7 +82,9 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 G = 9.81
 
@@ -128,16 +129,14 @@ def run_case(a, case, np=1, solver=None):
 
 
 def read_series(case):
-    path = os.path.join(case, "postProcessing/liquid/timeSeries.csv")
+    path = os.path.join(case, outputs.LIQUID_SERIES)
     if not os.path.exists(path):
         fc.fail(f"{path} was not written")
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    return outputs.read_series(path)
 
 
 def read_profiles(case):
-    with open(os.path.join(case, "postProcessing/liquid/profiles.csv")) as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    rows = outputs.read_series(os.path.join(case, outputs.LIQUID_PROFILES))
     out = {}
     for r in rows:
         out.setdefault(r["time_s"], []).append((r["x_m"], r["depth_m"]))

@@ -21,7 +21,6 @@ directory and a row after the write in each series. Then B's endTime is set to 0
   5. resuming a case without a complete write is refused;
   6. run A's screen shows mixflowFoam's progress line (simulated time, wall, estimate to finish).
 """
-import csv
 import os
 import re
 import shutil
@@ -31,7 +30,9 @@ import sys
 import time
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 root, bindir, work = (os.path.abspath(a) for a in sys.argv[1:4])
 ranks = int(sys.argv[4]) if len(sys.argv) > 4 else 1
@@ -77,8 +78,7 @@ def run(fn, d):
 
 
 def series(d, name):
-    with open(os.path.join(d, "postProcessing", "liquid", name)) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    return outputs.read_series(os.path.join(d, outputs.POST, "liquid", name))
 
 
 def first_write_done(d):

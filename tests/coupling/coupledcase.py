@@ -2,7 +2,7 @@
 all faces no-slip walls, y up, g = (0, -9.81, 0)) filled with liquid or part liquid/part air,
 plus constant/couplingProperties and the particle scene as LIGGGHTS commands (system/in.liggghts).
 
-Standard library only; OpenFOAM file helpers come from tests/cfd/foamcase.py.
+Standard library only; OpenFOAM file helpers come from python/mixflow/foamcase.py.
 """
 
 import csv
@@ -12,8 +12,9 @@ import shutil
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cfd"))
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 G = 9.81
 
@@ -256,12 +257,11 @@ def fluid_response_entry(a):
 
 def read_exchange_log(case):
     """postProcessing/coupling/exchange.csv as a list of dicts of floats."""
-    path = os.path.join(case, "postProcessing", "coupling", "exchange.csv")
-    with open(path) as f:
-        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    path = os.path.join(case, outputs.EXCHANGE)
+    rows = outputs.read_series(path, comments=True)
     if not rows:
         fc.fail(f"{path} has no rows")
-    return [{k: float(v) for k, v in r.items()} for r in rows]
+    return rows
 
 
 def read_reference(path, key_col, key):

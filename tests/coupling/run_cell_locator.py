@@ -15,8 +15,8 @@ import shutil
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cfd"))
-import foamcase as fc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
 
 CONTROL = """application test_cell_locator;
 startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;

@@ -40,12 +40,9 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "cfd"))
-import foamcase as fc  # noqa: E402
-
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-import suite  # noqa: E402  (the OpenFOAM-style dictionary reader)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import foamcase as fc  # noqa: E402
+from mixflow import foamdict  # noqa: E402
 
 
 def rows(path):
@@ -60,7 +57,7 @@ def check_correctors(case):
     mesh it printed (to the 3 digits printed), and the count written to fvSolution follows the
     rule (3 up to D = 20, else 10; docs/parameters.md)."""
     log = open(os.path.join(case, "log.mixflowPrepare")).read()
-    liquid = suite.read_dict(os.path.join(case, "constant", "sceneProperties"))["liquid"]
+    liquid = foamdict.read_dict(os.path.join(case, "constant", "sceneProperties"))["liquid"]
     mu = float(liquid["viscosityCap"] if liquid["rheology"] != "Newtonian" else
                liquid["viscosity"])
     dt = float(re.search(r"CFD step (\S+) s", log).group(1))
@@ -164,10 +161,10 @@ def main():
     ok &= worst_liq <= 1e-6
 
     dem = rows(os.path.join(pp, "dem", "timeSeries.csv"))
-    settled = suite.read_dict(os.path.join(case, "dem", "settled.state"))["settled"]
+    settled = foamdict.read_dict(os.path.join(case, "dem", "settled.state"))["settled"]
     n0 = int(settled["particles"])
     # The settle warns when the sample's fraction is more than 3 % off the target.
-    target = float(suite.read_dict(os.path.join(case, "constant", "sceneProperties"))["sample"]
+    target = float(foamdict.read_dict(os.path.join(case, "constant", "sceneProperties"))["sample"]
                    ["solidFraction"])
     off = abs(float(settled["sampleFraction"]) / target - 1)
     with open(os.path.join(case, "log.mixflowDem")) as f:
@@ -194,7 +191,7 @@ def main():
 
     # Saturation: V_liquid(0) against the pore volume of the settled box.
     height = float(settled["height"])
-    scene = suite.read_dict(os.path.join(case, "constant", "sceneProperties"))
+    scene = foamdict.read_dict(os.path.join(case, "constant", "sceneProperties"))
     L, W = float(scene["sample"]["length"]), float(scene["sample"]["width"])
     vp = math.pi / 6 * float(scene["particles"]["diameter"])**3
     pore = L * height * W - n0 * vp

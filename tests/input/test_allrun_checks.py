@@ -30,9 +30,8 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import inputcase  # noqa: E402
-from inputcase import check, edit, tree  # noqa: E402
+import inputcase  # the script's folder is on sys.path
+from inputcase import check, edit, tree
 
 root, dem_exe, prepare_exe, work = (os.path.abspath(p) for p in sys.argv[1:5])
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""scripts/suite.py: dictionary editor, tier files, plan, resume bookkeeping (no simulation).
+"""The dictionary editor (python/mixflow/foamdict.py) and scripts/suite.py's tier files, plan and
+resume bookkeeping (no simulation).
 
 usage: test_suite.py WORKDIR
 
@@ -28,7 +29,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 import suite  # noqa: E402
+from mixflow import foamdict  # noqa: E402
 
 failures = []
 
@@ -47,7 +50,7 @@ os.makedirs(work)
 def raises(fn, *words):
     try:
         fn()
-    except suite.DictError as e:
+    except foamdict.DictError as e:
         msg = str(e)
         return all(w in msg for w in words), msg
     return False, "no error"
@@ -57,11 +60,11 @@ def raises(fn, *words):
 case = os.path.join(work, "P")
 shutil.copytree(os.path.join(ROOT, "cases", "P"), case)
 dem = open(os.path.join(case, "system", "demDict")).read()
-new, acts = suite.edit_dict(dem, {"youngModulusFactor": "1", "timeStep": "5e-7",
+new, acts = foamdict.edit_dict(dem, {"youngModulusFactor": "1", "timeStep": "5e-7",
                                   "settle": {"maxTime": "0.5", "relaxTime": "0"},
                                   "velocityProfile": {"time": "0.6"}, "limitForce": "off"},
                             note="tier test")
-d = suite.parse_dict(new)
+d = foamdict.parse_dict(new)
 check(d["youngModulusFactor"] == "1" and d["timeStep"] == "5e-7", "top-level values replaced")
 check(d["settle"] == {"friction": "0.1", "maxTime": "0.5", "relaxTime": "0"},
       "one-line block: value replaced, absent entry inserted, others kept")
@@ -75,10 +78,10 @@ check("rayleighFraction   0.1;" in new and "sampleInterval     0.01;   // s betw
 check({a for _, _, a in acts} == {"set", "inserted"} and len(acts) == 6, f"actions {acts}")
 
 sp = open(os.path.join(case, "constant", "sceneProperties")).read()
-new, acts = suite.edit_dict(sp, {"sample": {"width": "0.072", "newKey": "3"},
+new, acts = foamdict.edit_dict(sp, {"sample": {"width": "0.072", "newKey": "3"},
                                  "channel": {"sideWalls": "periodic"},
                                  "particles": {"friction": "0.7"}})
-d = suite.parse_dict(new)
+d = foamdict.parse_dict(new)
 check(d["sample"]["width"] == "0.072" and d["sample"]["length"] == "0.9"
       and d["sample"]["height"] == "0.6", "nested value replaced, siblings kept")
 check(d["sample"]["newKey"] == "3" and "    newKey 3;\n}" in new,
@@ -87,15 +90,15 @@ check(d["channel"]["sideWalls"] == "periodic" and d["channel"]["length"] == "4.0
 check(("particles.friction", "0.7", "kept") in acts, "an equal value is reported as kept")
 check(new.count("{") == sp.count("{") and new.count("}") == sp.count("}"), "no block added")
 
-ok, msg = raises(lambda: suite.edit_dict(sp, {"liquid": {"density": "1000"}}), "liquid", "liquid.density")
+ok, msg = raises(lambda: foamdict.edit_dict(sp, {"liquid": {"density": "1000"}}), "liquid", "liquid.density")
 check(ok, f"missing block is an error naming the entry: {msg}")
-new, acts = suite.edit_dict(sp, {"liquid": {"density": "1000"}}, optional=lambda path: path == ("liquid",))
+new, acts = foamdict.edit_dict(sp, {"liquid": {"density": "1000"}}, optional=lambda path: path == ("liquid",))
 check(new == sp and acts == [("liquid.density", "1000", "skipped")], "optional missing block skipped")
-new, _ = suite.edit_dict(dem, {"newBlock": {"a": "1", "b": "2"}}, create_blocks=True)
-check(suite.parse_dict(new)["newBlock"] == {"a": "1", "b": "2"}, "create_blocks inserts a block")
-ok, msg = raises(lambda: suite.parse_dict("a { b 1; "), "not closed")
+new, _ = foamdict.edit_dict(dem, {"newBlock": {"a": "1", "b": "2"}}, create_blocks=True)
+check(foamdict.parse_dict(new)["newBlock"] == {"a": "1", "b": "2"}, "create_blocks inserts a block")
+ok, msg = raises(lambda: foamdict.parse_dict("a { b 1; "), "not closed")
 check(ok, f"unbalanced dictionary refused: {msg}")
-ok, msg = raises(lambda: suite.edit_dict(sp, {"sample": "1"}), "block, not an entry")
+ok, msg = raises(lambda: foamdict.edit_dict(sp, {"sample": "1"}), "block, not an entry")
 check(ok, f"a value for a block refused: {msg}")
 
 # 2. Tier errors: a bad tier file in the work directory.
@@ -152,18 +155,18 @@ for name in ("paper", "reference", "quick", "paper-window"):
             continue
         try:
             texts, recs = suite.tier_edits(src, tier, scene)
-        except suite.DictError as e:
+        except foamdict.DictError as e:
             check(False, f"tier {name} on {scene}: {e}")
             continue
-        before = suite.read_dict(os.path.join(src, "constant", "sceneProperties"))
-        after = suite.parse_dict(texts.get("constant/sceneProperties")
+        before = foamdict.read_dict(os.path.join(src, "constant", "sceneProperties"))
+        after = foamdict.parse_dict(texts.get("constant/sceneProperties")
                                  or open(os.path.join(src, "constant", "sceneProperties")).read())
         same = all(before[b][k] == after[b][k] for b, k in
                    (("sample", "length"), ("sample", "height"), ("channel", "length"), ("channel", "height")))
         if not same:
             check(False, f"tier {name} on {scene} changed L, H or the channel")
         if (name, scene) in expect:
-            parsed = {rel: suite.parse_dict(t) for rel, t in texts.items()}
+            parsed = {rel: foamdict.parse_dict(t) for rel, t in texts.items()}
             check(sub(parsed, expect[(name, scene)]), f"tier {name} on {scene} sets {expect[(name, scene)]}")
     check(True, f"tier {name} applies to every scene present")
 
@@ -186,10 +189,10 @@ tier = suite.Tier("quick")
 texts, recs = suite.tier_edits(os.path.join(ROOT, "cases", "P"), tier, "P")
 copy_dir = os.path.join(work, "copy", "P")
 suite.make_copy("P", copy_dir, tier, texts, recs, "particles")
-rec = suite.read_dict(os.path.join(copy_dir, "system", "tier"))
+rec = foamdict.read_dict(os.path.join(copy_dir, "system", "tier"))
 check(rec["tier"] == "quick" and rec["overrides"]["system/demDict"]["youngModulusFactor"] == "1e-4",
       "system/tier records the tier and what it set")
-check(suite.read_dict(os.path.join(copy_dir, "constant", "sceneProperties"))["sample"]["width"] == "0.072",
+check(foamdict.read_dict(os.path.join(copy_dir, "constant", "sceneProperties"))["sample"]["width"] == "0.072",
       "the copy has the tier's values")
 check(sorted(os.listdir(copy_dir)) == ["Allrun", "constant", "system"], "only the inputs are copied")
 check("../../scripts" not in open(os.path.join(copy_dir, "Allrun")).read().replace("${MIXFLOW_ROOT:-../..}", ""),
@@ -211,13 +214,13 @@ var.set_entries(["couplingProperties.dragIntegration=implicit",
 texts, recs = suite.tier_edits(os.path.join(ROOT, "cases", "HB+P"), var, "HB+P")
 var_dir = os.path.join(work, "variant", "HB+P")
 suite.make_copy("HB+P", var_dir, var, texts, recs, "mixture")
-cp = suite.read_dict(os.path.join(var_dir, "constant", "couplingProperties"))
+cp = foamdict.read_dict(os.path.join(var_dir, "constant", "couplingProperties"))
 check(cp["dragIntegration"] == "implicit" and cp["dragFluidResponse"] == "continuity",
       "--set replaces an entry and inserts a missing one")
-check(suite.read_dict(os.path.join(var_dir, "system", "demDict"))["youngModulusFactor"] == "2e-4",
+check(foamdict.read_dict(os.path.join(var_dir, "system", "demDict"))["youngModulusFactor"] == "2e-4",
       "--set wins over the tier's own value")
-rec = suite.read_dict(os.path.join(var_dir, "system", "tier"))
-check(suite.unquote(rec["set"]) == var.set_text and
+rec = foamdict.read_dict(os.path.join(var_dir, "system", "tier"))
+check(foamdict.unquote(rec["set"]) == var.set_text and
       rec["overrides"]["constant/couplingProperties"]["dragFluidResponse"] == "continuity",
       "system/tier records --set")
 p = suite.plan_scene("HB+P", os.path.join(work, "variant"), suite.Tier("quick"), 1)

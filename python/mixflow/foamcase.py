@@ -1,4 +1,5 @@
-"""Helpers shared by the mixflowFoam tests: run OpenFOAM programs, write and read ASCII case files.
+"""Helpers of the CFD and coupling tests, benchmarks and scripts: run OpenFOAM programs, write and
+read ASCII case files.
 
 Standard library only (the tests run with any python3). Fields are read from ASCII files written
 with a high writePrecision; only internalField is parsed (uniform or nonuniform, scalar or vector).
@@ -10,6 +11,8 @@ import shlex
 import shutil
 import subprocess
 import sys
+
+from . import foamdict
 
 
 def fail(msg):
@@ -102,14 +105,13 @@ def write_foam_file(case, rel, cls, obj, body):
 
 
 def set_entry(path, key, value):
-    """Replace a top-level 'key value;' line of a dictionary file (must exist exactly once)."""
-    with open(path) as f:
-        text = f.read()
-    text, n = re.subn(rf"^{re.escape(key)}\s+[^;]*;", f"{key} {value};", text, flags=re.M)
-    if n != 1:
+    """Set the top-level entry KEY of a dictionary file to VALUE (the entry must exist)."""
+    try:
+        if isinstance(foamdict.read_dict(path).get(key, {}), dict):
+            raise foamdict.DictError(f"no entry {key}")
+        foamdict.edit_file(path, {key: str(value)})
+    except foamdict.DictError:
         fail(f"cannot set {key} in {path}")
-    with open(path, "w") as f:
-        f.write(text)
 
 
 def _parse_value(tok, kind):

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""python/mixflow: the shared readers and helpers the result scripts and tests rely on (no simulation).
+
+usage: test_package.py WORKDIR
+
+Checks, each exact (the values are chosen so that the arithmetic is exact in binary):
+  1. outputs: a value at a time interpolated between the rows around it (0.25 between 0 and 1 at
+     a quarter of the interval), nan outside the series, the nearest row's value (the first of
+     two as near), at() with an explicit method; read_series(comments=True) skips '#' lines;
+  2. foamcase.set_entry: an existing top-level entry is set with the rest of the file kept byte for
+     byte; an absent entry or a block stops with "cannot set KEY in PATH" (exit status 1);
+  3. paper: the pure liquids' subcritical times are those of PAPER, '+' -> '&' in the paper's
+     names; scripts/suite.py's DictError and TABLE1 are the package's (report.py catches
+     suite.DictError).
+"""
+import io
+import math
+import os
+import shutil
+import sys
+from contextlib import redirect_stdout
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+import suite  # noqa: E402
+from mixflow import foamcase, foamdict, outputs, paper  # noqa: E402
+from mixflow.synthcase import checker  # noqa: E402
+
+failures = []
+check = checker(failures)
+
+work = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "/tmp/test_package")
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+
+# 1. outputs
+path = os.path.join(work, "timeSeries.csv")
+with open(path, "w") as f:
+    f.write("# a comment line\ntime_s,front_bed_m\n0,0\n1,1\n2,4\n")
+rows = outputs.read_series(path, comments=True)
+check(rows == [{"time_s": 0.0, "front_bed_m": 0.0}, {"time_s": 1.0, "front_bed_m": 1.0},
+               {"time_s": 2.0, "front_bed_m": 4.0}], "read_series(comments=True): three rows of floats")
+check(outputs.interpolated(rows, "front_bed_m", 0.25) == 0.25, "interpolated at t = 0.25: 0.25")
+check(outputs.interpolated(rows, "front_bed_m", 1.5) == 2.5, "interpolated at t = 1.5: 2.5")
+check(math.isnan(outputs.interpolated(rows, "front_bed_m", 3.0)), "interpolated after the end: nan")
+check(outputs.nearest(rows, "front_bed_m", 1.4) == 1.0, "nearest at t = 1.4: the row at 1 s")
+check(outputs.nearest(rows, "front_bed_m", 1.5) == 1.0, "nearest at t = 1.5: the first of two as near")
+check(outputs.nearest(rows, "front_bed_m", 9.0) == 4.0, "nearest after the end: the last row")
+check(outputs.at(rows, "front_bed_m", 1.5, "interpolate") == 2.5
+      and outputs.at(rows, "front_bed_m", 1.5, "nearest") == 1.0, "at() with either method")
+
+# 2. foamcase.set_entry
+ctrl = os.path.join(work, "controlDict")
+text = ("FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        "endTime         1;   // the end\nwriteInterval   0.05;\nfunctions\n{\n    endTime 7;\n}\n")
+with open(ctrl, "w") as f:
+    f.write(text)
+foamcase.set_entry(ctrl, "endTime", 0.4)
+with open(ctrl) as f:
+    got = f.read()
+check(got == text.replace("endTime         1;", "endTime         0.4;", 1),
+      "set_entry: the top-level value set, the nested entry and the comment kept")
+for key in ("startTime", "functions"):
+    out = io.StringIO()
+    try:
+        with redirect_stdout(out):
+            foamcase.set_entry(ctrl, key, 1)
+        status = 0
+    except SystemExit as e:
+        status = e.code
+    check(status == 1 and f"cannot set {key} in {ctrl}" in out.getvalue(),
+          f"set_entry of {key} ({'absent' if key == 'startTime' else 'a block'}) stops with status 1")
+
+# 3. paper and the names scripts/suite.py takes from the package
+check(paper.PAPER_SUBCRITICAL == {"W": 1.2, "HB": 1.1, "B": 1.0}
+      and all(paper.PAPER["subcritical"][k] == v for k, v in paper.PAPER_SUBCRITICAL.items()),
+      "paper: the pure liquids' subcritical times")
+check(paper.PAPER_NAME["HB+P"] == "HB&P" and len(paper.TABLE1) == 14, "paper: Table 1's 14 scenes")
+check(suite.DictError is foamdict.DictError and suite.TABLE1 is paper.TABLE1
+      and suite.read_dict is foamdict.read_dict, "suite.py uses the package's reader and scene list")
+
+print(f"{len(failures)} failed" if failures else "all checks passed")
+sys.exit(1 if failures else 0)
