@@ -20,10 +20,10 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
-import foamcase as fc  # noqa: E402
 import reproducibility  # noqa: E402
+from mixflow import foamcase as fc  # noqa: E402
 
 G = 9.81
 
