@@ -2,42 +2,20 @@
 //   constant/sceneProperties  geometry (sample, channel), content, particle material
 //   system/demDict            DEM numerics (time step, softening, settling, outputs)
 //   system/controlDict        endTime, writeInterval (as for any OpenFOAM case)
-// Every entry is validated on reading; defaults are listed in docs/parameters.md.
+// Every entry is validated on reading; defaults are listed in docs/parameters.md (the
+// sceneProperties tables are printed from SceneProperties' declarations).
 #pragma once
 
 #include <string>
 
+#include "SceneProperties.h"
+
 namespace mixflow::dem {
 
-struct SampleSpec {
-  double length = 0;  // L along x (m)
-  double height = 0;  // H along y (m)
-  double width = 0;   // W along z (m)
-  double solidFraction = 0.6056;
-};
-
-struct ChannelSpec {
-  double length = 0;                // x extent from the back wall (m); particles beyond are deleted
-  double height = 0;                // y extent (m); particles above are deleted
-  std::string sideWalls = "walls";  // walls (frictional) | periodic (an infinitely wide channel)
-};
-
-struct ParticleMaterial {
-  double diameter = 0.024;
-  double density = 2500;
-  double youngModulus = 70e9;       // particle-particle (paper value, before softening)
-  double wallYoungModulus = 700e9;  // wall material (paper value, before softening)
-  double poisson = 0.3;
-  double restitution = 0.7;
-  double friction = 0.7;
-  double wallFriction = 0.7;
-  double rollingFriction = 0.1;
-  std::string rollingModel = "cdt";  // cdt | epsd2 | off
-  double rollingViscousDamping = 0;  // epsd only
-  double radius() const { return 0.5 * diameter; }
-  double mass() const;
-  double volume() const;
-};
+// The scene's entries (sceneProperties) are common to both halves: SceneProperties.h.
+using mixflow::ChannelSpec;
+using mixflow::ParticleMaterial;
+using mixflow::SampleSpec;
 
 struct SettleSpec {
   double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
