@@ -26,9 +26,9 @@ Schema makeSchema() {
                        "the sample box; the grains' voidfraction comes from the coupling)"),
           dictParam("sample", "the column behind the gate at x = L; back wall at x = 0"),
           requiredScalar("sample.length", Range::positive(), "m",
-                         "L of the column behind the gate; with grains one below d is refused")
+                         "L of the column behind the gate (back wall at x = 0, gate at x = L)")
               .alsoAllowed("≥ d with grains"),
-          requiredScalar("sample.height", Range::positive(), "m", "H; with grains ≥ d")
+          requiredScalar("sample.height", Range::positive(), "m", "H of the column")
               .alsoAllowed("≥ d with grains"),
           requiredScalar("sample.width", Range::positive(), "m",
                          "W; also the channel width (side walls at z = 0, W)")
@@ -39,13 +39,13 @@ Schema makeSchema() {
                       "the count only: the settled packing comes from `settle.friction` (0.1: φ ≈ "
                       "0.61 at the reference tier; 0.7: 0.569) and the softening (quick tier: "
                       "0.59-0.64). The settle warns when the settled fraction is more than 3 % "
-                      "off the target. A liquid scene ignores it"),
+                      "off the target. Validated, and unused, in a liquid scene"),
           dictParam("channel", "the channel downstream of the gate"),
           requiredScalar("channel.length", Range::positive(), "m",
                          "x of the outlet: particles beyond are deleted, the liquid leaves "
                          "(zero-gradient U and p). Paper: not given; the dry cases use 4.0 m, "
                          "the liquid and mixture cases 5.86 m (calibrated with case W, below)")
-              .alsoAllowed("> L, with grains > L + d"),
+              .alsoAllowed("> L (with grains > L + d)"),
           requiredScalar("channel.height", Range::positive(), "m",
                          "y of the open top: particles above are deleted, the atmosphere of the "
                          "liquid. It must lie above the column: a liquid needs air above it, and "

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace mixflow {
@@ -98,17 +99,20 @@ std::string docDefault(const Param& p) {
 std::string docNumber(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
-  std::string s = buf;
-  // 7e+10 -> 7e10, 1.48e-05 -> 1.48e-5
-  const size_t e = s.find('e');
-  if (e != std::string::npos) {
-    std::string mant = s.substr(0, e), ex = s.substr(e + 1);
-    const bool neg = ex[0] == '-';
-    ex = ex.substr(1);
-    ex.erase(0, std::min(ex.find_first_not_of('0'), ex.size() - 1));
-    s = mant + "e" + (neg ? "-" : "") + ex;
+  std::string plain = buf;
+  // The shortest exponent form that reads back as v: 1e4, 7e10, 1.48e-5.
+  std::string expo;
+  for (int digits = 0; digits < 6 && expo.empty(); ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*e", digits, v);
+    if (std::stod(buf) == std::stod(plain)) expo = buf;
   }
-  return s;
+  const size_t e = expo.find('e');
+  const bool neg = expo[e + 1] == '-';
+  std::string ex = expo.substr(e + 2);
+  ex.erase(0, std::min(ex.find_first_not_of('0'), ex.size() - 1));
+  expo = expo.substr(0, e) + "e" + (neg ? "-" : "") + ex;
+  if (plain.find('e') != std::string::npos) return expo;
+  return expo.size() < plain.size() ? expo : plain;
 }
 
 Param scalarParam(std::string path, double def, Range range, std::string unit,

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     }
     for (const auto& s : stale)
       std::cerr << path << ": the table '" << s
-                << "' differs from the declarations; regenerate it with: mixflowSchema -update "
+                << "' differs from the declarations; regenerate it with: " << argv[0] << " -update "
                 << path << "\n";
     if (!stale.empty()) return 1;
     std::cout << path << ": every generated table matches the declarations\n";
