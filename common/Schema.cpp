@@ -58,16 +58,19 @@ std::string docAllowed(const Param& p) {
   std::string s;
   switch (p.type) {
     case Param::Type::Scalar:
-      s = docRange(p.range);
+      s = (p.autoDefault ? "auto, " : "") + docRange(p.range);
       break;
     case Param::Type::Integer:
-      s = "[" + docNumber(p.range.lo) + ", " + docNumber(p.range.hi) + "]";
+      s = (p.autoDefault ? "auto, [" : "[") + docNumber(p.range.lo) + ", " + docNumber(p.range.hi) +
+          "]";
       break;
     case Param::Type::Word:
       s = join(p.words);
       break;
     case Param::Type::Switch:
       s = "on, off";
+      break;
+    case Param::Type::Text:
       break;
     case Param::Type::Dict:
       s = "dictionary";
@@ -76,18 +79,22 @@ std::string docAllowed(const Param& p) {
       s = "see meaning";
       break;
   }
-  return p.allowedNote.empty() ? s : s + ", " + p.allowedNote;
+  if (p.allowedNote.empty()) return s;
+  return s.empty() ? p.allowedNote : s + ", " + p.allowedNote;
 }
 
 std::string docDefault(const Param& p) {
   if (!p.defaultNote.empty()) return p.defaultNote;
   if (p.required) return "(required)";
+  if (p.autoDefault) return "auto";
   switch (p.type) {
     case Param::Type::Scalar:
     case Param::Type::Integer:
       return docNumber(p.number);
     case Param::Type::Word:
       return p.word;
+    case Param::Type::Text:
+      return "`" + p.word + "`";
     case Param::Type::Switch:
       return p.number != 0 ? "on" : "off";
     default:
@@ -149,6 +156,21 @@ Param requiredWord(std::string path, std::vector<std::string> words, std::string
 Param switchParam(std::string path, bool def, std::string meaning) {
   Param p = make(std::move(path), Param::Type::Switch, std::move(meaning));
   p.number = def ? 1 : 0;
+  return p;
+}
+Param autoScalar(std::string path, Range range, std::string unit, std::string meaning) {
+  Param p = scalarParam(std::move(path), 0, range, std::move(unit), std::move(meaning));
+  p.autoDefault = true;
+  return p;
+}
+Param autoInteger(std::string path, long lo, long hi, std::string meaning) {
+  Param p = integerParam(std::move(path), 0, lo, hi, std::move(meaning));
+  p.autoDefault = true;
+  return p;
+}
+Param textParam(std::string path, std::string def, std::string meaning) {
+  Param p = make(std::move(path), Param::Type::Text, std::move(meaning));
+  p.word = std::move(def);
   return p;
 }
 Param dictParam(std::string path, std::string meaning) {
@@ -221,6 +243,23 @@ std::string Schema::word(const Dictionary& d, const std::string& path) const {
 bool Schema::flag(const Dictionary& d, const std::string& path) const {
   const Param& p = typed(path, Param::Type::Switch);
   return d.switchOr(p.key(), p.number != 0);
+}
+
+std::string Schema::text(const Dictionary& d, const std::string& path) const {
+  const Param& p = typed(path, Param::Type::Text);
+  return d.has(p.key()) ? d.text(p.key()) : p.word;
+}
+
+std::optional<double> Schema::scalarOrAuto(const Dictionary& d, const std::string& path) const {
+  const Param& p = typed(path, Param::Type::Scalar);
+  if (!p.autoDefault) throw std::logic_error(file_ + ": entry '" + path + "' has no auto");
+  return d.scalarOrAuto(p.key(), p.range);
+}
+
+std::optional<long> Schema::integerOrAuto(const Dictionary& d, const std::string& path) const {
+  const Param& p = typed(path, Param::Type::Integer);
+  if (!p.autoDefault) throw std::logic_error(file_ + ": entry '" + path + "' has no auto");
+  return d.integerOrAuto(p.key(), std::lround(p.range.lo), std::lround(p.range.hi));
 }
 
 std::string Schema::markdown(const std::vector<std::string>& sections) const {

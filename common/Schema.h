@@ -4,6 +4,7 @@
 // prints the table docs/parameters.md shows, so reading and documentation share one declaration.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,13 +13,14 @@
 namespace mixflow {
 
 struct Param {
-  enum class Type { Scalar, Integer, Word, Switch, Dict, Any };
+  enum class Type { Scalar, Integer, Word, Switch, Text, Dict, Any };
   std::string path;  // dotted path inside the file: "sample.length", "liquid.air.density"
   Type type = Type::Scalar;
   bool required = false;
-  double number = 0;               // default of Scalar, Integer, Switch (1 = on)
-  std::string word;                // default of Word
-  Range range = Range::any();      // Scalar; Integer: closed [lo, hi]
+  bool autoDefault = false;    // Scalar, Integer: absent or `auto` leaves the choice to the program
+  double number = 0;           // default of Scalar, Integer, Switch (1 = on)
+  std::string word;            // default of Word, Text
+  Range range = Range::any();  // Scalar; Integer: closed [lo, hi]
   std::vector<std::string> words;  // Word: the allowed words
   std::string unit;
   std::string meaning;
@@ -42,8 +44,12 @@ Param wordParam(std::string path, std::string def, std::vector<std::string> word
                 std::string meaning);
 Param requiredWord(std::string path, std::vector<std::string> words, std::string meaning);
 Param switchParam(std::string path, bool def, std::string meaning);
-Param dictParam(std::string path, std::string meaning);  // a sub-dictionary
-Param anyParam(std::string path, std::string meaning);   // read by another reader (Function1)
+// `auto` (the default) or a number in range; the program's rule for auto is in the meaning.
+Param autoScalar(std::string path, Range range, std::string unit, std::string meaning);
+Param autoInteger(std::string path, long lo, long hi, std::string meaning);
+Param textParam(std::string path, std::string def, std::string meaning);  // raw tokens
+Param dictParam(std::string path, std::string meaning);                   // a sub-dictionary
+Param anyParam(std::string path, std::string meaning);  // read by another reader (Function1)
 
 class Schema {
  public:
@@ -64,6 +70,10 @@ class Schema {
   long integer(const Dictionary& d, const std::string& path) const;
   std::string word(const Dictionary& d, const std::string& path) const;
   bool flag(const Dictionary& d, const std::string& path) const;
+  std::string text(const Dictionary& d, const std::string& path) const;
+  // Auto entries: empty when absent or `auto`.
+  std::optional<double> scalarOrAuto(const Dictionary& d, const std::string& path) const;
+  std::optional<long> integerOrAuto(const Dictionary& d, const std::string& path) const;
 
   // Markdown table (entry, default, allowed, unit, meaning) of the entries in `sections`, in
   // declaration order; sub-dictionaries themselves are not rows.

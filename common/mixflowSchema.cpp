@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "DemDict.h"
 #include "Dictionary.h"
 #include "MixflowProperties.h"
 #include "SceneProperties.h"
@@ -28,6 +29,7 @@ std::vector<Table> tables() {
        mixflow::SceneProperties::schema(),
        {"", "sample", "channel", "particles"}},
       {"sceneProperties.liquid", mixflow::SceneProperties::schema(), {"liquid", "liquid.air"}},
+      {"demDict", mixflow::DemDict::schema(), {"", "velocityProfile", "savage", "settle"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
   };
 }

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <sstream>
-#include <utility>
 
 #include "ContactTimes.h"
 #include "Dictionary.h"
@@ -14,63 +12,6 @@ namespace mixflow::dem {
 namespace {
 constexpr double kGravity = 9.81;
 std::string shortNum(double v) { return formatNumber(v, 4); }
-
-void readSettle(const Dictionary& d, SettleSpec& s) {
-  d.allowOnly({"friction", "maxTime", "kineticTolerance", "fillSpacing", "relaxTime", "seed"});
-  s.friction = d.scalarOr("friction", s.friction, Range::nonNegative());
-  s.maxTime = d.scalarOr("maxTime", s.maxTime, Range::positive());
-  s.kineticTolerance = d.scalarOr("kineticTolerance", s.kineticTolerance, Range::positive());
-  // Spacing below 1.02 d leaves no room for the jitter; above 2 d the fill column gets very tall.
-  s.fillSpacing = d.scalarOr("fillSpacing", s.fillSpacing, Range::closed(1.02, 2.0));
-  s.relaxTime = d.scalarOr("relaxTime", s.relaxTime, Range::nonNegative());
-  s.seed = d.integerOr("seed", s.seed, 1, 900000000);
-}
-
-void readDem(const Dictionary& d, DemSpec& m) {
-  d.allowOnly({"youngModulusFactor", "timeStep", "rayleighFraction", "maxRayleighFraction",
-               "maxHertzFraction", "limitForce", "sampleInterval", "frontGapDiameters",
-               "velocityProfile", "stopWhenArrested", "arrestKineticTolerance", "arrestMinTime",
-               "arrestFrontDiameters", "arrestWindow", "processors", "settle", "savage"});
-  m.youngModulusFactor =
-      d.scalarOr("youngModulusFactor", m.youngModulusFactor, Range::openClosed(0.0, 1.0));
-  if (const auto v = d.scalarOrAuto("timeStep", Range::positive())) m.timeStep = *v;
-  m.rayleighFraction = d.scalarOr("rayleighFraction", m.rayleighFraction, Range::openClosed(0, 1));
-  m.maxRayleighFraction =
-      d.scalarOr("maxRayleighFraction", m.maxRayleighFraction, Range::openClosed(0, 1));
-  m.maxHertzFraction = d.scalarOr("maxHertzFraction", m.maxHertzFraction, Range::openClosed(0, 1));
-  m.limitForce = d.switchOr("limitForce", m.limitForce);
-  m.sampleInterval = d.scalarOr("sampleInterval", m.sampleInterval, Range::positive());
-  m.frontGapDiameters = d.scalarOr("frontGapDiameters", m.frontGapDiameters, Range::positive());
-  const Dictionary vp = d.subDictOrEmpty("velocityProfile");
-  vp.allowOnly({"x", "time", "binDiameters"});
-  m.profileX = vp.scalarOr("x", m.profileX, Range::any());
-  m.profileTime = vp.scalarOr("time", m.profileTime, Range::nonNegative());
-  m.profileBinDiameters = vp.scalarOr("binDiameters", m.profileBinDiameters, Range::positive());
-  const Dictionary sv = d.subDictOrEmpty("savage");
-  sv.allowOnly({"x", "layers", "tanPhi"});
-  m.savageX = sv.scalarOr("x", m.savageX, Range::any());
-  m.savageLayers = static_cast<int>(sv.integerOr("layers", m.savageLayers, 2, 50));
-  m.savageTanPhi = sv.scalarOr("tanPhi", m.savageTanPhi, Range::positive());
-  m.stopWhenArrested = d.switchOr("stopWhenArrested", m.stopWhenArrested);
-  m.arrestKineticTolerance =
-      d.scalarOr("arrestKineticTolerance", m.arrestKineticTolerance, Range::positive());
-  m.arrestMinTime = d.scalarOr("arrestMinTime", m.arrestMinTime, Range::nonNegative());
-  m.arrestFrontDiameters =
-      d.scalarOr("arrestFrontDiameters", m.arrestFrontDiameters, Range::nonNegative());
-  m.arrestWindow = d.scalarOr("arrestWindow", m.arrestWindow, Range::positive());
-  if (d.has("processors")) {
-    m.processors = d.text("processors");
-    std::istringstream in(m.processors);
-    std::string t;
-    int n = 0;
-    while (in >> t) {
-      ++n;
-      if (t != "*" && (t.find_first_not_of("0123456789") != std::string::npos || t == "0"))
-        d.fail("processors", "each of the three entries must be * or a positive integer");
-    }
-    if (n != 3) d.fail("processors", "needs three entries (x y z), e.g. \"* 1 1\"");
-  }
-}
 }  // namespace
 
 Scene Scene::read(const std::string& caseDir) {
@@ -92,8 +33,9 @@ Scene Scene::read(const std::string& caseDir) {
   if (s.content == "mixture") s.fluidDensity = scene.liquid.density;
 
   const Dictionary dem = Dictionary::readFile((fs::path(caseDir) / "system/demDict"));
-  readDem(dem, s.dem);
-  readSettle(dem.subDictOrEmpty("settle"), s.settle);
+  const DemDict demDict = DemDict::read(dem);
+  s.dem = demDict.dem;
+  s.settle = demDict.settle;
 
   // controlDict holds many OpenFOAM entries; the DEM half reads only these two.
   const Dictionary control = Dictionary::readFile((fs::path(caseDir) / "system/controlDict"));
