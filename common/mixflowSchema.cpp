@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "CfdDict.h"
 #include "DemDict.h"
 #include "Dictionary.h"
 #include "MixflowProperties.h"
@@ -30,6 +31,7 @@ std::vector<Table> tables() {
        {"", "sample", "channel", "particles"}},
       {"sceneProperties.liquid", mixflow::SceneProperties::schema(), {"liquid", "liquid.air"}},
       {"demDict", mixflow::DemDict::schema(), {"", "velocityProfile", "savage", "settle"}},
+      {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
   };
 }

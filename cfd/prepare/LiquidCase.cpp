@@ -10,44 +10,7 @@
 namespace mixflow::cfd {
 
 namespace {
-
 std::string shortNum(double v) { return formatNumber(v, 6); }
-
-void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
-  d.allowOnly({"dimensions", "cellSize", "maxCo", "maxAlphaCo", "deltaT", "maxDeltaT",
-               "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",
-               "pressureTolerance", "alphaTolerance", "writeFormat", "observables",
-               "mixtureModel"});
-  m.dimensions = static_cast<int>(d.integerOr("dimensions", m.dimensions, 2, 3));
-  if (const auto v = d.scalarOrAuto("cellSize", Range::positive())) m.cellSize = *v;
-  // Above 1 the MULES-bounded VOF scheme loses boundedness; interFoam tutorials use 0.5 to 1.
-  m.maxCo = d.scalarOr("maxCo", m.maxCo, Range::openClosed(0.0, 1.0));
-  m.maxAlphaCo = d.scalarOr("maxAlphaCo", m.maxAlphaCo, Range::openClosed(0.0, 1.0));
-  m.deltaT = d.scalarOr("deltaT", m.deltaT, Range::positive());
-  m.maxDeltaT = d.scalarOr("maxDeltaT", m.maxDeltaT, Range::positive());
-  if (m.deltaT > m.maxDeltaT)
-    d.fail("deltaT", "value " + shortNum(m.deltaT) + " must not exceed maxDeltaT (" +
-                         shortNum(m.maxDeltaT) + " s)");
-  // `auto` (the default): chosen from the viscous number once mesh and step are known.
-  if (const auto v = d.integerOrAuto("nCorrectors", 1, 20)) m.nCorrectors = static_cast<int>(*v);
-  m.nOuterCorrectors = static_cast<int>(d.integerOr("nOuterCorrectors", m.nOuterCorrectors, 1, 50));
-  m.momentumPredictor = d.switchOr("momentumPredictor", m.momentumPredictor);
-  m.momentumScheme =
-      d.wordOr("momentumScheme", m.momentumScheme, {"linearUpwind", "upwind", "limitedLinearV"});
-  if (const auto v = d.scalarOrAuto("pressureTolerance", Range::positive()))
-    m.pressureTolerance = *v;
-  m.alphaTolerance = d.scalarOr("alphaTolerance", m.alphaTolerance, Range::positive());
-  m.writeFormat = d.wordOr("writeFormat", m.writeFormat, {"ascii", "binary"});
-  m.mixtureModel = d.wordOr("mixtureModel", m.mixtureModel, {"cfdDem", "bulk"});
-
-  const Dictionary ob = d.subDictOrEmpty("observables");
-  ob.allowOnly({"frontThreshold", "sectionX", "minDepth", "froudeDepth"});
-  o.frontThreshold = ob.scalarOr("frontThreshold", o.frontThreshold, {0.0, 1.0, true, true});
-  o.sectionX = ob.scalarOr("sectionX", o.sectionX, Range::positive());
-  if (const auto v = ob.scalarOrAuto("minDepth", Range::positive())) o.minDepth = *v;
-  o.froudeDepth = ob.wordOr("froudeDepth", o.froudeDepth, {"surface", "volume"});
-}
-
 }  // namespace
 
 double LiquidCase::maxViscosity() const {
@@ -118,7 +81,9 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   c.surfaceTension = scene.surfaceTension;
 
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
-  readNumerics(cfd, c.numerics, c.observables);
+  const CfdDict cfdDict = CfdDict::read(cfd);
+  c.numerics = cfdDict.numerics;
+  c.observables = cfdDict.observables;
   if (c.numerics.mixtureModel == "bulk") {
     if (c.content != "mixture")
       cfd.fail("mixtureModel",
