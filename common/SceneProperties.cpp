@@ -268,7 +268,7 @@ std::string SceneProperties::readContent(const Dictionary& scene) {
   return schema().word(scene, "content");
 }
 
-SceneProperties SceneProperties::read(const Dictionary& scene) {
+SceneProperties SceneProperties::read(const Dictionary& scene, Half half) {
   const Schema& sc = schema();
   sc.allowOnly(scene, "");
   SceneProperties s;
@@ -276,7 +276,9 @@ SceneProperties SceneProperties::read(const Dictionary& scene) {
   readSample(sc, scene.subDict("sample"), s.sample);
   readChannel(sc, scene.subDict("channel"), s.channel);
   if (s.grains()) readParticles(sc, scene.subDictOrEmpty("particles"), s.particles);
-  if (s.fluid()) readLiquid(sc, scene.subDict("liquid"), s);
+  if (half == Half::fluid && s.fluid()) readLiquid(sc, scene.subDict("liquid"), s);
+  if (half == Half::grains && s.content == "mixture")
+    s.liquid.density = sc.scalar(scene.subDict("liquid"), "liquid.density");
   checkGeometry(scene, s);
   return s;
 }

@@ -69,7 +69,7 @@ struct SceneProperties {
   SampleSpec sample;
   ChannelSpec channel;
   ParticleMaterial particles;  // read for particles and mixture; defaults otherwise
-  Rheology liquid;             // read for liquid and mixture
+  Rheology liquid;             // the fluid half: read for liquid and mixture
   AirProperties air;
   double surfaceTension = 0.07;  // N/m (water-air; the paper gives none)
 
@@ -79,8 +79,12 @@ struct SceneProperties {
   static const Schema& schema();
   // The content entry alone (a program refuses a content before reading the rest).
   static std::string readContent(const Dictionary& scene);
-  // Every entry the content uses, and the rules between entries (named by the entry to change).
-  static SceneProperties read(const Dictionary& scene);
+  // Which half reads the file: the DEM half takes of a mixture's liquid{} only its density (the
+  // Savage number's rho_f; the rest is the fluid half's), the fluid half validates all of it.
+  enum class Half { grains, fluid };
+  // Every entry the content uses in that half, and the rules between entries (named by the entry
+  // to change).
+  static SceneProperties read(const Dictionary& scene, Half half);
 };
 
 }  // namespace mixflow

@@ -24,7 +24,8 @@ Scene Scene::read(const std::string& caseDir) {
     s.name = fs::absolute(caseDir).parent_path().filename().string();
 
   const SceneProperties scene =
-      SceneProperties::read(Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties")));
+      SceneProperties::read(Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties")),
+                            SceneProperties::Half::grains);
   s.content = scene.content;
   s.sample = scene.sample;
   s.channel = scene.channel;

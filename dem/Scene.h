@@ -3,7 +3,7 @@
 //   system/demDict            DEM numerics (time step, softening, settling, outputs)
 //   system/controlDict        endTime, writeInterval (as for any OpenFOAM case)
 // Every entry is validated on reading; defaults are listed in docs/parameters.md (the
-// sceneProperties tables are printed from SceneProperties' declarations).
+// sceneProperties and demDict tables are printed from their declarations in common/).
 #pragma once
 
 #include <string>

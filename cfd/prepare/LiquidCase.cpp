@@ -72,7 +72,7 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
     sceneDict.fail("content",
                    "'particles' needs no fluid case (run mixflowDem); mixflowPrepare prepares "
                    "content liquid or mixture (and checks any content with -check)");
-  const SceneProperties scene = SceneProperties::read(sceneDict);
+  const SceneProperties scene = SceneProperties::read(sceneDict, SceneProperties::Half::fluid);
   c.content = scene.content;
   c.sample = scene.sample;
   c.channel = scene.channel;

@@ -3,8 +3,8 @@
 //   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
 //   system/controlDict        endTime, writeInterval (the user's; never rewritten)
 // Every entry is validated on reading (file, entry, allowed range); defaults are listed in
-// docs/parameters.md (liquid scenes; the sceneProperties tables are printed from
-// SceneProperties' declarations). Units are SI as in docs/model.md §5 (Pa, Pa s^n, kg/m3);
+// docs/parameters.md (liquid scenes; the sceneProperties and cfdDict tables are printed from
+// their declarations in common/). Units are SI as in docs/model.md §5 (Pa, Pa s^n, kg/m3);
 // OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
 #pragma once
 

@@ -43,6 +43,8 @@ struct TempFile {
   ~TempFile() { std::remove(path.c_str()); }
 };
 
+constexpr SceneProperties::Half kGrains = SceneProperties::Half::grains;
+
 const std::string kDryScene =
     "content particles;\n"
     "sample { length 0.25; height 0.17; width 0.1; }\n"
@@ -70,7 +72,8 @@ TEST(Schema, MarkdownRowsCarryDefaultRangeAndUnit) {
 }
 
 TEST(SceneProperties, DefaultsAreTheStructInitializers) {
-  const SceneProperties s = SceneProperties::read(Dictionary::parse(kDryScene, "sceneProperties"));
+  const SceneProperties s =
+      SceneProperties::read(Dictionary::parse(kDryScene, "sceneProperties"), kGrains);
   const mixflow::ParticleMaterial paper{};
   EXPECT_DOUBLE_EQ(s.particles.diameter, paper.diameter);
   EXPECT_DOUBLE_EQ(s.particles.wallYoungModulus, paper.wallYoungModulus);
@@ -81,12 +84,22 @@ TEST(SceneProperties, DefaultsAreTheStructInitializers) {
 TEST(SceneProperties, ChannelMustExceedTheSample) {
   std::string text = kDryScene;
   text.replace(text.find("length 0.8"), 10, "length 0.26");  // L < length <= L + d
-  std::string msg = errorOf([&] { SceneProperties::read(Dictionary::parse(text, "sp")); });
+  std::string msg = errorOf([&] { SceneProperties::read(Dictionary::parse(text, "sp"), kGrains); });
   EXPECT_TRUE(has(msg, "channel.length") && has(msg, "plus one particle diameter")) << msg;
   text = kDryScene;
   text.replace(text.find("height 0.4"), 10, "height 0.17");  // = H
-  msg = errorOf([&] { SceneProperties::read(Dictionary::parse(text, "sp")); });
+  msg = errorOf([&] { SceneProperties::read(Dictionary::parse(text, "sp"), kGrains); });
   EXPECT_TRUE(has(msg, "channel.height") && has(msg, "sample height")) << msg;
+}
+
+// The DEM half of a mixture takes only liquid.density; the fluid half needs the whole liquid.
+TEST(SceneProperties, EachHalfReadsWhatItUses) {
+  std::string text = kDryScene + "liquid { density 1260; }\n";
+  text.replace(text.find("particles"), 9, "mixture");
+  const Dictionary d = Dictionary::parse(text, "sp");
+  EXPECT_DOUBLE_EQ(SceneProperties::read(d, kGrains).liquid.density, 1260);
+  const std::string msg = errorOf([&] { SceneProperties::read(d, SceneProperties::Half::fluid); });
+  EXPECT_TRUE(has(msg, "liquid.rheology") && has(msg, "missing (required)")) << msg;
 }
 
 TEST(MixflowProperties, AbsentFileGivesTheDefaults) {
