@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "ForceModel.h"
+#include "MixflowProperties.h"
 #include "VoidFractionModel.h"
 
 namespace mixflow::coupling {
@@ -42,9 +43,9 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.sourceDistribution = d.wordOr("sourceDistribution", "volume", {"volume", "centre"});
   p.dragReactionVelocity =
       d.wordOr("dragReactionVelocity", "particleMean", {"particleMean", "cell"});
-  p.hasVoidfractionMin = d.has("voidfractionMin");
-  if (p.hasVoidfractionMin)
-    p.voidfractionMin = d.scalar("voidfractionMin", Range{0.0, 1.0, false, true});
+  if (d.has("voidfractionMin"))
+    p.voidfractionMin =
+        d.scalar("voidfractionMin", MixflowProperties::schema().param("voidfractionMin").range);
   p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
   p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
   p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share", "continuity"});

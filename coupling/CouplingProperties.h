@@ -4,6 +4,7 @@
 // coupling/README.md ("Options") and docs/parameters.md ("Mixture scenes").
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,9 @@ struct CouplingProperties {
   std::string interpolation = "cell";
   std::string sourceDistribution = "volume";
   std::string dragReactionVelocity = "particleMean";
-  bool hasVoidfractionMin = false;
-  double voidfractionMin = 0.05;
+  // eps_f floor of the coupling; absent: mixflowProperties' voidfractionMin (MixflowProperties.h),
+  // which it may only raise.
+  std::optional<double> voidfractionMin;
   long logEvery = 1;
   // implicit: beta, U and the explicit forces are held over the interval and the drag is updated
   // with the particle's velocity at every DEM step (backward Euler, stable for any beta; see

@@ -113,12 +113,12 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   for (const auto& m : forceModels_) needs_ |= m->needs();
 
   voidfractionMin_ = solverVoidfractionMin;
-  if (props_->hasVoidfractionMin) {
-    if (props_->voidfractionMin < solverVoidfractionMin)
-      fatal(propsFile + ": voidfractionMin " + std::to_string(props_->voidfractionMin) +
+  if (props_->voidfractionMin) {
+    if (*props_->voidfractionMin < solverVoidfractionMin)
+      fatal(propsFile + ": voidfractionMin " + std::to_string(*props_->voidfractionMin) +
             " is below mixflowProperties' voidfractionMin " +
             std::to_string(solverVoidfractionMin) + ", which the solver enforces");
-    voidfractionMin_ = props_->voidfractionMin;
+    voidfractionMin_ = *props_->voidfractionMin;
   }
 
   // The coupling's fields are part of the state: write them with the others.

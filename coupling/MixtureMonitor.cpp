@@ -7,6 +7,7 @@
 #include "CoupledResume.h"
 #include "DemDriver.h"
 #include "Dictionary.h"
+#include "SceneProperties.h"
 
 namespace mixflow::coupling {
 
@@ -17,7 +18,8 @@ std::unique_ptr<MixtureMonitor> MixtureMonitor::createIfMixture(const std::strin
                                                                 std::ostream& out, bool resume) {
   const fs::path props = fs::path(caseDir) / "constant" / "sceneProperties";
   if (!fs::exists(props)) return nullptr;
-  if (Dictionary::readFile(props.string()).text("content") != "mixture") return nullptr;
+  if (SceneProperties::readContent(Dictionary::readFile(props.string())) != "mixture")
+    return nullptr;
   return std::make_unique<MixtureMonitor>(dem::Scene::read(caseDir), lig, out, resume);
 }
 

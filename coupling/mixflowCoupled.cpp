@@ -38,6 +38,7 @@
 #include "upwind.H"
 #include "FoamCoupling.H"
 #include "MixtureMonitor.h"
+#include "MixflowProperties.h"
 // clang-format on
 
 namespace {

@@ -2,81 +2,25 @@
 //   constant/sceneProperties  geometry (sample, channel), content, particle material
 //   system/demDict            DEM numerics (time step, softening, settling, outputs)
 //   system/controlDict        endTime, writeInterval (as for any OpenFOAM case)
-// Every entry is validated on reading; defaults are listed in docs/parameters.md.
+// Every entry is validated on reading; defaults are listed in docs/parameters.md (the
+// sceneProperties and demDict tables are printed from their declarations in common/).
 #pragma once
 
 #include <string>
 
+#include "DemDict.h"
+#include "SceneProperties.h"
+
 namespace mixflow::dem {
 
-struct SampleSpec {
-  double length = 0;  // L along x (m)
-  double height = 0;  // H along y (m)
-  double width = 0;   // W along z (m)
-  double solidFraction = 0.6056;
-};
+// The scene's entries (sceneProperties) are common to both halves: SceneProperties.h.
+using mixflow::ChannelSpec;
+using mixflow::ParticleMaterial;
+using mixflow::SampleSpec;
 
-struct ChannelSpec {
-  double length = 0;                // x extent from the back wall (m); particles beyond are deleted
-  double height = 0;                // y extent (m); particles above are deleted
-  std::string sideWalls = "walls";  // walls (frictional) | periodic (an infinitely wide channel)
-};
-
-struct ParticleMaterial {
-  double diameter = 0.024;
-  double density = 2500;
-  double youngModulus = 70e9;       // particle-particle (paper value, before softening)
-  double wallYoungModulus = 700e9;  // wall material (paper value, before softening)
-  double poisson = 0.3;
-  double restitution = 0.7;
-  double friction = 0.7;
-  double wallFriction = 0.7;
-  double rollingFriction = 0.1;
-  std::string rollingModel = "cdt";  // cdt | epsd2 | off
-  double rollingViscousDamping = 0;  // epsd only
-  double radius() const { return 0.5 * diameter; }
-  double mass() const;
-  double volume() const;
-};
-
-struct SettleSpec {
-  double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
-  double maxTime = 3.0;   // s of simulated settling at most
-  double kineticTolerance = 1e-5;  // settled when mean KE per particle < tol * m g d
-  double fillSpacing = 1.15;       // lattice spacing of the initial loose fill, in diameters
-  double relaxTime = 0.05;         // s with the real friction before the gate opens
-  long seed = 12345;
-  double checkpointInterval = 0;  // s of settling between checkpoints (SettleCheckpoint.h); 0: none
-};
-
-struct DemSpec {
-  double youngModulusFactor = 1.0;  // softening: both moduli are multiplied by it (speed knob)
-  double timeStep = 0;              // 0 = auto: rayleighFraction * T_R
-  double rayleighFraction = 0.1;
-  double maxRayleighFraction = 0.2;  // a requested step above this fraction of T_R is refused
-  double maxHertzFraction = 0.1;     // ... or above this fraction of the fastest Hertz contact time
-  bool limitForce = true;            // LIGGGHTS hertz option: no attractive normal force
-  double sampleInterval = 0.01;      // s between time-series samples (and deletions at the outlet)
-  double frontGapDiameters = 0.5;  // surface gap (in d) that still connects a particle to the mass
-  double profileX = 0.8;           // velocity profile section (m)
-  double profileTime = 0.5;        // velocity profile time (s)
-  double profileBinDiameters = 1.0;
-  bool stopWhenArrested = true;
-  // Arrested when the front moved less than arrestFrontDiameters d over the last arrestWindow s and
-  // the mean KE per particle is below arrestKineticTolerance m g d. (The kinetic energy alone never
-  // reaches zero: a constant rolling torque (cdt) keeps grains at rest chattering.)
-  double arrestKineticTolerance = 1e-3;
-  double arrestFrontDiameters = 0.1;
-  double arrestWindow = 0.25;
-  double arrestMinTime = 0.3;        // never declare arrest before this time (s)
-  std::string processors = "* * *";  // LIGGGHTS processors grid
-  // Savage number at the section x = savageX (docs/model.md §8): the shear rate is the
-  // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
-  // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.
-  double savageX = 0.8;
-  int savageLayers = 3;
-  double savageTanPhi = 0.7;
-};
+// demDict's entries: DemDict.h.
+using mixflow::DemSpec;
+using mixflow::SettleSpec;
 
 struct Scene {
   std::string caseDir;

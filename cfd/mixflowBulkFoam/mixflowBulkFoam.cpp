@@ -13,6 +13,7 @@
 #include "CMULES.H"
 #include "EulerDdtScheme.H"
 #include "Function1.H"
+#include "MixflowProperties.h"
 #include "Progress.h"
 #include "bulkMixtureViscosity.H"
 #include "fvCFD.H"

@@ -29,6 +29,7 @@
 #include "CMULES.H"
 #include "EulerDdtScheme.H"
 #include "Function1.H"
+#include "MixflowProperties.h"
 #include "Progress.h"
 #include "fvCFD.H"
 #include "fvOptions.H"

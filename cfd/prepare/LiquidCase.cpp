@@ -6,162 +6,11 @@
 #include <vector>
 
 #include "Dictionary.h"
-#include "Scene.h"
 
 namespace mixflow::cfd {
 
 namespace {
-
 std::string shortNum(double v) { return formatNumber(v, 6); }
-
-std::string join(const std::vector<std::string>& w) {
-  std::string s;
-  for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
-  return s;
-}
-
-bool contains(const std::vector<std::string>& v, const std::string& k) {
-  return std::find(v.begin(), v.end(), k) != v.end();
-}
-
-// Same entries and ranges as the DEM half (dem/Scene.cpp): one scene description for both.
-void readSample(const Dictionary& d, LiquidSample& s) {
-  d.allowOnly({"length", "height", "width", "solidFraction"});
-  s.length = d.scalar("length", Range::positive());
-  s.height = d.scalar("height", Range::positive());
-  s.width = d.scalar("width", Range::positive());
-  // Used by the particles of a mixture only; validated here as the DEM half does.
-  s.solidFraction = d.scalarOr("solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64));
-}
-
-void readChannel(const Dictionary& d, LiquidChannel& c) {
-  d.allowOnly({"length", "height", "sideWalls"});
-  c.length = d.scalar("length", Range::positive());
-  c.height = d.scalar("height", Range::positive());
-  c.sideWalls = d.wordOr("sideWalls", c.sideWalls, {"walls", "periodic"});
-}
-
-// A required coefficient: a missing one is reported with its meaning, unit and allowed range.
-double required(const Dictionary& d, const std::string& key, const Range& range,
-                const std::string& meaning) {
-  if (!d.has(key)) d.fail(key, "missing (required): " + meaning + ", allowed range " + range.str());
-  return d.scalar(key, range);
-}
-
-// The liquid's parameters depend on its rheology; an entry of another rheology is named as such
-// (e.g. yieldStress for a Newtonian liquid), not just as "unknown".
-void readLiquid(const Dictionary& d, Rheology& r, AirProperties& air, double& sigma) {
-  const std::vector<std::string> models{"Newtonian", "HerschelBulkley", "Bingham"};
-  r.model = d.word("rheology", models);
-  const std::vector<std::string> common{"rheology", "density", "surfaceTension", "air"};
-  std::vector<std::string> own;
-  if (r.model == "Newtonian")
-    own = {"viscosity"};
-  else if (r.model == "HerschelBulkley")
-    own = {"yieldStress", "consistency", "flowIndex", "viscosityCap"};
-  else
-    own = {"yieldStress", "plasticViscosity", "consistency", "flowIndex", "viscosityCap"};
-  const std::vector<std::string> every{"viscosity", "yieldStress",  "consistency",
-                                       "flowIndex", "viscosityCap", "plasticViscosity"};
-  std::vector<std::string> allowed = common;
-  allowed.insert(allowed.end(), own.begin(), own.end());
-  for (const auto& k : d.keys()) {
-    if (contains(allowed, k)) continue;
-    if (contains(every, k))
-      d.fail(k,
-             "is not a parameter of rheology " + r.model + "; its entries are: " + join(allowed));
-  }
-  d.allowOnly(allowed);
-
-  r.density = required(d, "density", Range::positive(), "liquid density (kg/m3)");
-  if (r.model == "Newtonian") {
-    r.viscosity = required(d, "viscosity", Range::positive(), "dynamic viscosity mu (Pa s)");
-  } else {
-    r.yieldStress = required(d, "yieldStress", Range::nonNegative(), "yield stress tau_c (Pa)");
-    if (r.model == "HerschelBulkley") {
-      r.consistency = required(d, "consistency", Range::positive(), "consistency kappa (Pa s^n)");
-      r.flowIndex = required(d, "flowIndex", Range::positive(), "flow index n");
-    } else {
-      // Bingham: tau = tau_c + mu_p gamma_dot, i.e. Herschel-Bulkley with n = 1.
-      const bool hasMu = d.has("plasticViscosity"), hasK = d.has("consistency");
-      if (hasMu && hasK)
-        d.fail("consistency",
-               "give either plasticViscosity or consistency (the same coefficient for "
-               "Bingham), not both");
-      if (!hasMu && !hasK)
-        d.fail("plasticViscosity",
-               "missing (required): a Bingham liquid needs plasticViscosity (Pa s), allowed "
-               "range (0, inf) (or consistency, its synonym)");
-      r.consistency = d.scalar(hasMu ? "plasticViscosity" : "consistency", Range::positive());
-      if (d.has("flowIndex")) {
-        const double n = d.scalar("flowIndex", Range::positive());
-        if (n != 1.0)
-          d.fail("flowIndex", "value " + shortNum(n) +
-                                  ": a Bingham liquid has n = 1 (remove the entry, or use "
-                                  "rheology HerschelBulkley)");
-      }
-      r.flowIndex = 1.0;
-    }
-    // Regularisation: OpenFOAM's HerschelBulkley caps the apparent viscosity,
-    // nu = min(nu0, (tau0 + k gamma_dot^n) / gamma_dot). Default and its measured effect:
-    // docs/parameters.md (liquid scenes).
-    r.viscosityCap = d.scalarOr("viscosityCap", 1e4, Range::positive());
-    const double mu1 = r.yieldStress + r.consistency;  // apparent viscosity at 1/s (Pa s)
-    if (r.viscosityCap <= mu1)
-      d.fail("viscosityCap", "value " + shortNum(r.viscosityCap) +
-                                 " Pa s must exceed the apparent viscosity at a shear rate of "
-                                 "1/s, yieldStress + consistency = " +
-                                 shortNum(mu1) +
-                                 " Pa s (a lower cap replaces the rheology by a Newtonian "
-                                 "liquid where it matters); allowed range (" +
-                                 shortNum(mu1) + ", inf)");
-  }
-  sigma = d.scalarOr("surfaceTension", sigma, Range::nonNegative());
-
-  const Dictionary a = d.subDictOrEmpty("air");
-  a.allowOnly({"density", "viscosity"});
-  air.density = a.scalarOr("density", air.density, Range::positive());
-  air.viscosity = a.scalarOr("viscosity", air.viscosity, Range::positive());
-  if (air.density >= r.density)
-    d.fail("density", "value " + shortNum(r.density) + " must exceed the air density (" +
-                          shortNum(air.density) + " kg/m3): the liquid lies under the air");
-}
-
-void readNumerics(const Dictionary& d, CfdNumerics& m, ObservableSpec& o) {
-  d.allowOnly({"dimensions", "cellSize", "maxCo", "maxAlphaCo", "deltaT", "maxDeltaT",
-               "nCorrectors", "nOuterCorrectors", "momentumPredictor", "momentumScheme",
-               "pressureTolerance", "alphaTolerance", "writeFormat", "observables",
-               "mixtureModel"});
-  m.dimensions = static_cast<int>(d.integerOr("dimensions", m.dimensions, 2, 3));
-  if (const auto v = d.scalarOrAuto("cellSize", Range::positive())) m.cellSize = *v;
-  // Above 1 the MULES-bounded VOF scheme loses boundedness; interFoam tutorials use 0.5 to 1.
-  m.maxCo = d.scalarOr("maxCo", m.maxCo, Range::openClosed(0.0, 1.0));
-  m.maxAlphaCo = d.scalarOr("maxAlphaCo", m.maxAlphaCo, Range::openClosed(0.0, 1.0));
-  m.deltaT = d.scalarOr("deltaT", m.deltaT, Range::positive());
-  m.maxDeltaT = d.scalarOr("maxDeltaT", m.maxDeltaT, Range::positive());
-  if (m.deltaT > m.maxDeltaT)
-    d.fail("deltaT", "value " + shortNum(m.deltaT) + " must not exceed maxDeltaT (" +
-                         shortNum(m.maxDeltaT) + " s)");
-  // `auto` (the default): chosen from the viscous number once mesh and step are known.
-  if (const auto v = d.integerOrAuto("nCorrectors", 1, 20)) m.nCorrectors = static_cast<int>(*v);
-  m.nOuterCorrectors = static_cast<int>(d.integerOr("nOuterCorrectors", m.nOuterCorrectors, 1, 50));
-  m.momentumPredictor = d.switchOr("momentumPredictor", m.momentumPredictor);
-  m.momentumScheme =
-      d.wordOr("momentumScheme", m.momentumScheme, {"linearUpwind", "upwind", "limitedLinearV"});
-  if (const auto v = d.scalarOrAuto("pressureTolerance", Range::positive()))
-    m.pressureTolerance = *v;
-  m.alphaTolerance = d.scalarOr("alphaTolerance", m.alphaTolerance, Range::positive());
-  m.writeFormat = d.wordOr("writeFormat", m.writeFormat, {"ascii", "binary"});
-  m.mixtureModel = d.wordOr("mixtureModel", m.mixtureModel, {"cfdDem", "bulk"});
-
-  const Dictionary ob = d.subDictOrEmpty("observables");
-  ob.allowOnly({"frontThreshold", "sectionX", "minDepth", "froudeDepth"});
-  o.frontThreshold = ob.scalarOr("frontThreshold", o.frontThreshold, {0.0, 1.0, true, true});
-  o.sectionX = ob.scalarOr("sectionX", o.sectionX, Range::positive());
-  if (const auto v = ob.scalarOrAuto("minDepth", Range::positive())) o.minDepth = *v;
-  o.froudeDepth = ob.wordOr("froudeDepth", o.froudeDepth, {"surface", "volume"});
-}
-
 }  // namespace
 
 double LiquidCase::maxViscosity() const {
@@ -217,28 +66,32 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   if (c.name.empty() || c.name == ".")
     c.name = fs::absolute(caseDir).lexically_normal().parent_path().filename().string();
 
-  const Dictionary scene = Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties"));
-  scene.allowOnly({"content", "sample", "channel", "particles", "liquid"});
-  c.content = scene.word("content", {"particles", "liquid", "mixture"});
-  if (c.content == "particles")
-    scene.fail("content",
-               "'particles' needs no fluid case (run mixflowDem); mixflowPrepare prepares "
-               "content liquid or mixture (and checks any content with -check)");
-  readSample(scene.subDict("sample"), c.sample);
-  readChannel(scene.subDict("channel"), c.channel);
-  readLiquid(scene.subDict("liquid"), c.liquid, c.air, c.surfaceTension);
+  const Dictionary sceneDict =
+      Dictionary::readFile((fs::path(caseDir) / "constant/sceneProperties"));
+  if (SceneProperties::readContent(sceneDict) == "particles")
+    sceneDict.fail("content",
+                   "'particles' needs no fluid case (run mixflowDem); mixflowPrepare prepares "
+                   "content liquid or mixture (and checks any content with -check)");
+  const SceneProperties scene = SceneProperties::read(sceneDict, SceneProperties::Half::fluid);
+  c.content = scene.content;
+  c.sample = scene.sample;
+  c.channel = scene.channel;
+  c.liquid = scene.liquid;
+  c.air = scene.air;
+  c.surfaceTension = scene.surfaceTension;
 
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
-  readNumerics(cfd, c.numerics, c.observables);
+  const CfdDict cfdDict = CfdDict::read(cfd);
+  c.numerics = cfdDict.numerics;
+  c.observables = cfdDict.observables;
   if (c.numerics.mixtureModel == "bulk") {
     if (c.content != "mixture")
       cfd.fail("mixtureModel",
                "bulk models a mixture of grains and liquid; this scene's content "
                "is " +
                    c.content + " (allowed: cfdDem for it)");
-    // The grains' density as the DEM half reads it (sceneProperties particles).
-    const double rhoS = dem::Scene::read(caseDir).particles.density;
-    c.bulk = readBulkModel(caseDir, c.sample.solidFraction, rhoS, c.liquid.density);
+    c.bulk =
+        readBulkModel(caseDir, c.sample.solidFraction, scene.particles.density, c.liquid.density);
   }
 
   // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not
@@ -249,15 +102,6 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   c.writeInterval = times.writeInterval;
 
   // Cross-entry checks, named by the entry that has to change.
-  const Dictionary& ch = scene.subDict("channel");
-  if (c.channel.length <= c.sample.length)
-    ch.fail("length", "value " + shortNum(c.channel.length) + " must exceed the sample length (" +
-                          shortNum(c.sample.length) +
-                          " m): the outlet lies downstream of the gate");
-  if (c.channel.height <= c.sample.height)
-    ch.fail("height", "value " + shortNum(c.channel.height) + " must exceed the sample height (" +
-                          shortNum(c.sample.height) + " m): the liquid needs air above it");
-
   double h = c.numerics.cellSize > 0 ? c.numerics.cellSize : c.sample.height / 20.0;
   c.nx = std::max(1, static_cast<int>(std::lround(c.channel.length / h)));
   c.ny = std::max(1, static_cast<int>(std::lround(c.channel.height / h)));

@@ -3,81 +3,28 @@
 //   system/cfdDict            mesh and solver numerics of mixflowFoam, observables
 //   system/controlDict        endTime, writeInterval (the user's; never rewritten)
 // Every entry is validated on reading (file, entry, allowed range); defaults are listed in
-// docs/parameters.md (liquid scenes). Units are SI as in docs/model.md §5 (Pa, Pa s^n, kg/m3);
+// docs/parameters.md (liquid scenes; the sceneProperties and cfdDict tables are printed from
+// their declarations in common/). Units are SI as in docs/model.md §5 (Pa, Pa s^n, kg/m3);
 // OpenFOAM's kinematic inputs are derived from them by writeFoamCase (FoamCaseWriter.h).
 #pragma once
 
 #include <string>
 
 #include "BulkModel.h"
+#include "CfdDict.h"
+#include "SceneProperties.h"
 
 namespace mixflow::cfd {
 
-struct LiquidSample {
-  double length = 0;              // L along x (m), from the back wall x = 0 to the gate
-  double height = 0;              // H along y (m)
-  double width = 0;               // W along z (m): the channel width (side walls at z = 0, W)
-  double solidFraction = 0.6056;  // the grains of a mixture (the DEM half's, or the bulk model's)
-};
+// The scene's entries (sceneProperties) are common to both halves: SceneProperties.h.
+using LiquidSample = SampleSpec;
+using LiquidChannel = ChannelSpec;
+using mixflow::AirProperties;
+using mixflow::Rheology;
 
-struct LiquidChannel {
-  double length = 0;                // x extent (m): outlet at x = length
-  double height = 0;                // y extent (m): atmosphere at y = height
-  std::string sideWalls = "walls";  // walls (no-slip) | periodic (cyclic z faces, 3-D only)
-};
-
-// Rheology in SI units (docs/model.md §5): tau = tau_c + kappa gamma_dot^n.
-struct Rheology {
-  std::string model;        // Newtonian | HerschelBulkley | Bingham
-  double density = 0;       // rho (kg/m3)
-  double viscosity = 0;     // Newtonian dynamic viscosity mu (Pa s)
-  double yieldStress = 0;   // tau_c (Pa)
-  double consistency = 0;   // kappa (Pa s^n); Bingham: the plastic viscosity (Pa s)
-  double flowIndex = 1;     // n
-  double viscosityCap = 0;  // regularisation mu_0 (Pa s): apparent viscosity never above it
-  bool yieldStressModel() const { return model != "Newtonian"; }
-  // OpenFOAM's kinematic coefficients (HerschelBulkley viscosity model).
-  double nu() const { return viscosity / density; }
-  double tau0() const { return yieldStress / density; }
-  double k() const { return consistency / density; }
-  double nu0() const { return viscosityCap / density; }
-};
-
-struct AirProperties {
-  double density = 1.0;        // kg/m3 (docs/model.md §4)
-  double viscosity = 1.48e-5;  // Pa s (Table 2 gives kappa = 1.48e-5 with n = 1)
-};
-
-struct CfdNumerics {
-  int dimensions = 3;        // 3: the paper's channel with side walls; 2: one cell across W (empty)
-  double cellSize = 0;       // m; 0 = auto (H / 20)
-  double maxCo = 0.5;        // flow Courant number limit of the adaptive time step
-  double maxAlphaCo = 0.5;   // interface Courant number limit
-  double deltaT = 1e-4;      // first time step (s); adapted from then on
-  double maxDeltaT = 0.01;   // largest time step (s)
-  int nCorrectors = 0;       // PISO pressure correctors per outer iteration; 0 = auto (below)
-  int nOuterCorrectors = 1;  // PIMPLE outer iterations
-  // On: the viscous term is then implicit in U. Off (interFoam's damBreak) lags it in PISO's
-  // H(U), which holds a capped yield-stress liquid (mu up to viscosityCap) nearly still.
-  bool momentumPredictor = true;
-  std::string momentumScheme = "linearUpwind";  // linearUpwind | upwind | limitedLinearV
-  double pressureTolerance = 0;   // p_rgh absolute tolerance (final: relTol 0); 0 = auto (below)
-  double alphaTolerance = 1e-10;  // implicit alpha predictor: its residual is the only volume error
-  std::string writeFormat = "ascii";  // ascii | binary
-  // A mixture's model: cfdDem (grains by LIGGGHTS, mixflowCoupled) or bulk (the quasi two-phase
-  // bulk model, mixflowBulkFoam; constant/bulkProperties).
-  std::string mixtureModel = "cfdDem";
-};
-
-struct ObservableSpec {
-  double frontThreshold = 0.5;  // alpha_l >= this counts as liquid (docs/model.md §8)
-  double sectionX = 1.38;  // Froude section x (m) (Li & Zhao Eq. 15); -1: none (outside channel)
-  double minDepth = 0;     // m; below it the section Froude number is not defined; 0 = auto
-  // h of Fr = v / sqrt(g h): the liquid surface height ("surface": the flow depth one sees, the
-  // pores of a saturated granular layer counted full) or the liquid volume depth ("volume").
-  // The two agree without particles.
-  std::string froudeDepth = "surface";
-};
+// cfdDict's entries: CfdDict.h.
+using mixflow::CfdNumerics;
+using mixflow::ObservableSpec;
 
 struct LiquidCase {
   std::string caseDir;
@@ -87,7 +34,7 @@ struct LiquidCase {
   LiquidChannel channel;
   Rheology liquid;
   AirProperties air;
-  double surfaceTension = 0.07;  // N/m (water-air; the paper gives none)
+  double surfaceTension = 0;  // N/m (liquid.surfaceTension)
   CfdNumerics numerics;
   ObservableSpec observables;
   double endTime = 0;

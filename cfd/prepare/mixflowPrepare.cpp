@@ -24,6 +24,7 @@
 #include "LiquidCase.h"
 #include "MixtureCase.h"
 #include "Scene.h"
+#include "SceneProperties.h"
 
 namespace {
 void usage() {
@@ -37,8 +38,8 @@ void usage() {
 
 // constant/sceneProperties' content, read ahead of the reader of that content.
 std::string sceneContent(const std::string& caseDir) {
-  return mixflow::Dictionary::readFile(caseDir + "/constant/sceneProperties")
-      .word("content", {"particles", "liquid", "mixture"});
+  return mixflow::SceneProperties::readContent(
+      mixflow::Dictionary::readFile(caseDir + "/constant/sceneProperties"));
 }
 }  // namespace
 

@@ -1,0 +1,157 @@
+#include "DemDict.h"
+
+#include <sstream>
+
+namespace mixflow {
+
+namespace {
+Schema makeSchema() {
+  const DemSpec m{};
+  const SettleSpec s{};
+  return Schema(
+      "system/demDict",
+      {
+          scalarParam("youngModulusFactor", m.youngModulusFactor, Range::openClosed(0.0, 1.0), "",
+                      "softening: both moduli × factor; T_R ∝ factor^-1/2 (the main speed knob). "
+                      "Recorded in summary.json"),
+          autoScalar("timeStep", Range::positive(), "s",
+                     "auto = rayleighFraction × T_R. Limit = min(maxRayleighFraction T_R, "
+                     "maxHertzFraction t_Hertz(v = √(2 g H)))")
+              .alsoAllowed("≤ limit"),
+          scalarParam("rayleighFraction", m.rayleighFraction, Range::openClosed(0, 1), "",
+                      "paper: 5e-7 s = 0.04 T_R at 70 GPa"),
+          scalarParam("maxRayleighFraction", m.maxRayleighFraction, Range::openClosed(0, 1), "",
+                      "stability limit (as LIGGGHTS' check/timestep/gran)"),
+          scalarParam("maxHertzFraction", m.maxHertzFraction, Range::openClosed(0, 1), "",
+                      "stability limit on the fastest elastic contact (particle-wall or "
+                      "particle-particle)"),
+          switchParam("limitForce", m.limitForce,
+                      "LIGGGHTS hertz option: no attractive normal force at the end of a contact; "
+                      "actual restitution 0.718 for input 0.7 (off: 0.700)"),
+          scalarParam("sampleInterval", m.sampleInterval, Range::positive(), "s",
+                      "between time-series rows and outlet/top deletion passes")
+              .alsoAllowed("≤ writeInterval"),
+          scalarParam("frontGapDiameters", m.frontGapDiameters, Range::positive(), "d",
+                      "**Open choice** (front rule): particles whose surface gap ≤ k d are "
+                      "connected; the front is the largest x of the largest connected cluster, so "
+                      "detached grains never move it (`front_x_m`). A second front is always "
+                      "written: `front_thickness_x_m`, where the width-averaged deposit (top of "
+                      "each 2d-wide column, bins of d) first thins below one grain beyond x = L; "
+                      "a sparse one-grain tail moves the first, not the second"),
+          dictParam("velocityProfile", "the u(y) profile written once"),
+          scalarParam("velocityProfile.x", m.profileX, Range::any(), "m",
+                      "u(y) section; slab half-width d"),
+          scalarParam("velocityProfile.time", m.profileTime, Range::nonNegative(), "s",
+                      "time of the profile"),
+          scalarParam("velocityProfile.binDiameters", m.profileBinDiameters, Range::positive(), "d",
+                      "bin height"),
+          dictParam("savage", "the Savage number at a section"),
+          scalarParam("savage.x", m.savageX, Range::any(), "m",
+                      "**Open choice** (Savage number, docs/model.md §8): u(y) of the particles "
+                      "in the slab \\|x − savage.x\\| ≤ d on bins of height d; the top of the "
+                      "flow is the highest bin with ≥ 2 particles; γ̇ = least-squares du/dy over "
+                      "that bin and the contiguous populated bins below it, `layers` in all (the "
+                      "top 3 d). `savage_paper` = d ρs γ̇² / (g tanφ (ρs − ρf)) (Eq. 16 as "
+                      "printed), `savage_iverson` = ρs d² γ̇² / ((ρs − ρf) g h tanφ), h = the top "
+                      "bin's upper edge; ρf = 0 for a dry scene, the liquid's density for a "
+                      "mixture. Blank cells when no flow reaches the section"),
+          integerParam("savage.layers", m.savageLayers, 2, 50, "bins of the shear-rate fit"),
+          scalarParam("savage.tanPhi", m.savageTanPhi, Range::positive(), "",
+                      "tanφ; not given by the paper"),
+          switchParam("stopWhenArrested", m.stopWhenArrested,
+                      "stop once arrested: the front moved ≤ arrestFrontDiameters × d over the "
+                      "last arrestWindow and the mean KE per particle < arrestKineticTolerance × "
+                      "m g d (after arrestMinTime). KE alone never vanishes: the cdt rolling "
+                      "torque keeps grains at rest chattering"),
+          scalarParam("arrestKineticTolerance", m.arrestKineticTolerance, Range::positive(),
+                      "m g d", "per particle"),
+          scalarParam("arrestFrontDiameters", m.arrestFrontDiameters, Range::nonNegative(), "d",
+                      "front motion over arrestWindow"),
+          scalarParam("arrestWindow", m.arrestWindow, Range::positive(), "s", ""),
+          scalarParam("arrestMinTime", m.arrestMinTime, Range::nonNegative(), "s", ""),
+          textParam("processors", m.processors, "LIGGGHTS processor grid")
+              .alsoAllowed("three of * or positive integers"),
+          dictParam("settle", "the settling of the sample behind the gate"),
+          scalarParam("settle.friction", s.friction, Range::nonNegative(), "",
+                      "**Open choice** (sample preparation): particle friction while settling; "
+                      "0.1 gives φ ≈ 0.605 (0 gives ≈ 0.63)"),
+          scalarParam("settle.maxTime", s.maxTime, Range::positive(), "s",
+                      "of settling at most (reported as not converged if reached)"),
+          scalarParam("settle.kineticTolerance", s.kineticTolerance, Range::positive(), "m g d",
+                      "settled when mean KE per particle < tol × m g d"),
+          // Below 1.02 d there is no room for the jitter; above 2 d the fill column is very tall.
+          scalarParam("settle.fillSpacing", s.fillSpacing, Range::closed(1.02, 2.0), "d",
+                      "lattice spacing of the loose fill before settling"),
+          scalarParam("settle.relaxTime", s.relaxTime, Range::nonNegative(), "s",
+                      "with the real friction before the gate opens"),
+          integerParam("settle.seed", s.seed, 1, 900000000, "jitter of the loose fill"),
+          scalarParam("settle.checkpointInterval", s.checkpointInterval, Range::nonNegative(), "s",
+                      "of settling between checkpoints (0: none): an interrupted settle continues "
+                      "from the last to the sample an uninterrupted one gives; Allrun keeps it"),
+      });
+}
+
+void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
+  sc.allowOnly(d, "settle");
+  s.friction = sc.scalar(d, "settle.friction");
+  s.maxTime = sc.scalar(d, "settle.maxTime");
+  s.kineticTolerance = sc.scalar(d, "settle.kineticTolerance");
+  s.fillSpacing = sc.scalar(d, "settle.fillSpacing");
+  s.relaxTime = sc.scalar(d, "settle.relaxTime");
+  s.seed = sc.integer(d, "settle.seed");
+  s.checkpointInterval = sc.scalar(d, "settle.checkpointInterval");
+}
+
+void readProcessors(const Schema& sc, const Dictionary& d, std::string& grid) {
+  grid = sc.text(d, "processors");
+  std::istringstream in(grid);
+  std::string t;
+  int n = 0;
+  while (in >> t) {
+    ++n;
+    if (t != "*" && (t.find_first_not_of("0123456789") != std::string::npos || t == "0"))
+      d.fail("processors", "each of the three entries must be * or a positive integer");
+  }
+  if (n != 3) d.fail("processors", "needs three entries (x y z), e.g. \"* 1 1\"");
+}
+}  // namespace
+
+const Schema& DemDict::schema() {
+  static const Schema s = makeSchema();
+  return s;
+}
+
+DemDict DemDict::read(const Dictionary& d) {
+  const Schema& sc = schema();
+  sc.allowOnly(d, "");
+  DemDict r;
+  DemSpec& m = r.dem;
+  m.youngModulusFactor = sc.scalar(d, "youngModulusFactor");
+  if (const auto v = sc.scalarOrAuto(d, "timeStep")) m.timeStep = *v;
+  m.rayleighFraction = sc.scalar(d, "rayleighFraction");
+  m.maxRayleighFraction = sc.scalar(d, "maxRayleighFraction");
+  m.maxHertzFraction = sc.scalar(d, "maxHertzFraction");
+  m.limitForce = sc.flag(d, "limitForce");
+  m.sampleInterval = sc.scalar(d, "sampleInterval");
+  m.frontGapDiameters = sc.scalar(d, "frontGapDiameters");
+  const Dictionary vp = d.subDictOrEmpty("velocityProfile");
+  sc.allowOnly(vp, "velocityProfile");
+  m.profileX = sc.scalar(vp, "velocityProfile.x");
+  m.profileTime = sc.scalar(vp, "velocityProfile.time");
+  m.profileBinDiameters = sc.scalar(vp, "velocityProfile.binDiameters");
+  const Dictionary sv = d.subDictOrEmpty("savage");
+  sc.allowOnly(sv, "savage");
+  m.savageX = sc.scalar(sv, "savage.x");
+  m.savageLayers = static_cast<int>(sc.integer(sv, "savage.layers"));
+  m.savageTanPhi = sc.scalar(sv, "savage.tanPhi");
+  m.stopWhenArrested = sc.flag(d, "stopWhenArrested");
+  m.arrestKineticTolerance = sc.scalar(d, "arrestKineticTolerance");
+  m.arrestMinTime = sc.scalar(d, "arrestMinTime");
+  m.arrestFrontDiameters = sc.scalar(d, "arrestFrontDiameters");
+  m.arrestWindow = sc.scalar(d, "arrestWindow");
+  readProcessors(sc, d, m.processors);
+  readSettle(sc, d.subDictOrEmpty("settle"), r.settle);
+  return r;
+}
+
+}  // namespace mixflow

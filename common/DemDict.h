@@ -1,0 +1,62 @@
+// system/demDict: the DEM numerics of a scene with grains (time step, softening, settling,
+// observables). One declaration table (DemDict.cpp) gives every entry; the defaults are the
+// initializers below. The rules that need the scene (the time step's stability limit,
+// sampleInterval against writeInterval) are dem::Scene's.
+#pragma once
+
+#include <string>
+
+#include "Dictionary.h"
+#include "Schema.h"
+
+namespace mixflow {
+
+struct SettleSpec {
+  double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
+  double maxTime = 3.0;   // s of simulated settling at most
+  double kineticTolerance = 1e-5;  // settled when mean KE per particle < tol * m g d
+  double fillSpacing = 1.15;       // lattice spacing of the initial loose fill, in diameters
+  double relaxTime = 0.05;         // s with the real friction before the gate opens
+  long seed = 12345;
+  // s of settling between checkpoints (dem/SettleCheckpoint.h); 0: none
+  double checkpointInterval = 0;
+};
+
+struct DemSpec {
+  double youngModulusFactor = 1.0;  // softening: both moduli are multiplied by it (speed knob)
+  double timeStep = 0;              // 0 = auto: rayleighFraction * T_R
+  double rayleighFraction = 0.1;
+  double maxRayleighFraction = 0.2;  // a requested step above this fraction of T_R is refused
+  double maxHertzFraction = 0.1;     // ... or above this fraction of the fastest Hertz contact time
+  bool limitForce = true;            // LIGGGHTS hertz option: no attractive normal force
+  double sampleInterval = 0.01;      // s between time-series samples (and deletions at the outlet)
+  double frontGapDiameters = 0.5;  // surface gap (in d) that still connects a particle to the mass
+  double profileX = 0.8;           // velocity profile section (m)
+  double profileTime = 0.5;        // velocity profile time (s)
+  double profileBinDiameters = 1.0;
+  bool stopWhenArrested = true;
+  // Arrested when the front moved less than arrestFrontDiameters d over the last arrestWindow s and
+  // the mean KE per particle is below arrestKineticTolerance m g d. (The kinetic energy alone never
+  // reaches zero: a constant rolling torque (cdt) keeps grains at rest chattering.)
+  double arrestKineticTolerance = 1e-3;
+  double arrestFrontDiameters = 0.1;
+  double arrestWindow = 0.25;
+  double arrestMinTime = 0.3;        // never declare arrest before this time (s)
+  std::string processors = "* * *";  // LIGGGHTS processors grid
+  // Savage number at the section x = savageX (docs/model.md §8): the shear rate is the
+  // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
+  // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.
+  double savageX = 0.8;
+  int savageLayers = 3;
+  double savageTanPhi = 0.7;
+};
+
+struct DemDict {
+  DemSpec dem;
+  SettleSpec settle;
+
+  static const Schema& schema();
+  static DemDict read(const Dictionary& demDict);
+};
+
+}  // namespace mixflow

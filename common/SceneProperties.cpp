@@ -1,0 +1,286 @@
+#include "SceneProperties.h"
+
+#include <utility>
+#include <vector>
+
+namespace mixflow {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+std::string num(double v) { return formatNumber(v, 6); }
+
+Schema makeSchema() {
+  const SampleSpec s{};
+  const ChannelSpec c{};
+  const ParticleMaterial p{};
+  const AirProperties a{};
+  const SceneProperties scene{};
+  const std::vector<std::string> yieldStress{"HerschelBulkley", "Bingham"};
+  return Schema(
+      "constant/sceneProperties",
+      {
+          requiredWord("content", {"particles", "liquid", "mixture"},
+                       "what the scene holds: grains (LIGGGHTS only, mixflowDem), a liquid "
+                       "(mixflowFoam; mixflowPrepare refuses particles) or both (the liquid fills "
+                       "the sample box; the grains' voidfraction comes from the coupling)"),
+          dictParam("sample", "the column behind the gate at x = L; back wall at x = 0"),
+          requiredScalar("sample.length", Range::positive(), "m",
+                         "L of the column behind the gate (back wall at x = 0, gate at x = L)")
+              .alsoAllowed("≥ d with grains"),
+          requiredScalar("sample.height", Range::positive(), "m", "H of the column")
+              .alsoAllowed("≥ d with grains"),
+          requiredScalar("sample.width", Range::positive(), "m",
+                         "W; also the channel width (side walls at z = 0, W)")
+              .alsoAllowed("≥ d with grains"),
+          // Above random close packing (0.64) a monodisperse sample cannot be made by settling.
+          scalarParam("sample.solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64), "",
+                      "target φ of the grains: N = φ L H W / V_p particles (Li & Zhao). It sets "
+                      "the count only: the settled packing comes from `settle.friction` (0.1: φ ≈ "
+                      "0.61 at the reference tier; 0.7: 0.569) and the softening (quick tier: "
+                      "0.59-0.64). The settle warns when the settled fraction is more than 3 % "
+                      "off the target. Validated, and unused, in a liquid scene"),
+          dictParam("channel", "the channel downstream of the gate"),
+          requiredScalar("channel.length", Range::positive(), "m",
+                         "x of the outlet: particles beyond are deleted, the liquid leaves "
+                         "(zero-gradient U and p). Paper: not given; the dry cases use 4.0 m, "
+                         "the liquid and mixture cases 5.86 m (calibrated with case W, below)")
+              .alsoAllowed("> L (with grains > L + d)"),
+          requiredScalar("channel.height", Range::positive(), "m",
+                         "y of the open top: particles above are deleted, the atmosphere of the "
+                         "liquid. It must lie above the column: a liquid needs air above it, and "
+                         "grains standing at H are not deleted. Paper: not given; cases use 1.2 m")
+              .alsoAllowed("> H"),
+          wordParam("channel.sideWalls", c.sideWalls, {"walls", "periodic"},
+                    "walls: frictional (grains) and no-slip (liquid) side walls at z = 0, W "
+                    "(paper); periodic: an infinitely wide channel (cyclic z faces of a 3-D "
+                    "liquid). 2-D liquid: ignored (no side walls)"),
+          dictParam("particles", "the grains (Table 3); moduli before softening"),
+          scalarParam("particles.diameter", p.diameter, Range::positive(), "m", "d (Table 3)"),
+          // Grains from expanded polystyrene beads to osmium; one like 1e300 overflows the
+          // particle mass inside LIGGGHTS.
+          scalarParam("particles.density", p.density, Range::closed(10.0, 25000.0), "kg/m3",
+                      "solid grains from expanded polystyrene beads (about 15) to osmium "
+                      "(22 600); a value outside is a typo, and one like 1e300 overflows the "
+                      "particle mass inside LIGGGHTS"),
+          scalarParam("particles.youngModulus", p.youngModulus, Range::positive(), "Pa",
+                      "particle material (before softening)"),
+          scalarParam("particles.wallYoungModulus", p.wallYoungModulus, Range::positive(), "Pa",
+                      "wall material. **Open choice**: the paper's \"700 GPa (particle-wall)\" is "
+                      "taken as the wall material's modulus, so the particle-wall contact modulus "
+                      "E* is 6.99e10 Pa, not 700 GPa"),
+          scalarParam("particles.poissonRatio", p.poisson, {0.0, 0.5, false, true}, "",
+                      "both materials"),
+          // LIGGGHTS' damping formula needs e > 0; e = 1 is elastic.
+          scalarParam("particles.restitution", p.restitution, Range::openClosed(0.0, 1.0), "",
+                      "particle-particle and particle-wall"),
+          scalarParam("particles.friction", p.friction, Range::nonNegative(), "",
+                      "particle-particle"),
+          scalarParam("particles.wallFriction", p.wallFriction, Range::nonNegative(), "",
+                      "particle-wall (bottom, back, sides)"),
+          scalarParam("particles.rollingFriction", p.rollingFriction, Range::nonNegative(), "",
+                      "μ_r"),
+          wordParam("particles.rollingModel", p.rollingModel, {"cdt", "epsd2", "off"},
+                    "**Open choice**: the paper cites a rolling-friction model without naming "
+                    "it. cdt = constant directional torque μ_r R F_n (a rolling sphere "
+                    "decelerates at 5/7 μ_r g)"),
+          scalarParam("particles.rollingViscousDamping", p.rollingViscousDamping,
+                      Range::nonNegative(), "", "only for epsd-type models"),
+          dictParam("liquid", "the liquid (Table 2, SI units); its rheology selects its entries"),
+          requiredWord("liquid.rheology", {"Newtonian", "HerschelBulkley", "Bingham"},
+                       "τ = τc + κ γ̇ⁿ (docs/model.md §5)"),
+          requiredScalar("liquid.density", Range::positive(), "kg/m3", "ρ")
+              .alsoAllowed("> air density"),
+          requiredScalar("liquid.viscosity", Range::positive(), "Pa s", "μ")
+              .only({"Newtonian"})
+              .shownDefault("(required, Newtonian only)"),
+          requiredScalar("liquid.yieldStress", Range::nonNegative(), "Pa", "τc")
+              .only(yieldStress)
+              .shownDefault("(required, HB and Bingham)"),
+          requiredScalar("liquid.consistency", Range::positive(), "Pa s^n",
+                         "κ. Bingham: synonym of `plasticViscosity`")
+              .only(yieldStress)
+              .shownDefault("(required, HB)"),
+          requiredScalar("liquid.flowIndex", Range::positive(), "",
+                         "n. Bingham: n = 1 (any other value is refused)")
+              .only(yieldStress)
+              .shownDefault("(required, HB)"),
+          requiredScalar("liquid.plasticViscosity", Range::positive(), "Pa s",
+                         "μp; give it or `consistency`, not both")
+              .only({"Bingham"})
+              .shownDefault("(required, Bingham)"),
+          // OpenFOAM's HerschelBulkley caps the apparent viscosity,
+          // nu = min(nu0, (tau0 + k gamma_dot^n) / gamma_dot).
+          scalarParam("liquid.viscosityCap", 1e4, Range::positive(), "Pa s",
+                      "regularisation μ0: the apparent viscosity is min(μ0, (τc + κ γ̇ⁿ)/γ̇) "
+                      "(OpenFOAM's `HerschelBulkley`, nu0 = μ0/ρ). **Open choice**, below")
+              .only(yieldStress)
+              .alsoAllowed("> τc + κ (the apparent viscosity at 1/s)"),
+          scalarParam("liquid.surfaceTension", scene.surfaceTension, Range::nonNegative(), "N/m",
+                      "σ liquid-air; the paper gives none (water-air value)"),
+          dictParam("liquid.air", "the air above the liquid (Table 2)"),
+          scalarParam("liquid.air.density", a.density, Range::positive(), "kg/m3", "Table 2"),
+          scalarParam("liquid.air.viscosity", a.viscosity, Range::positive(), "Pa s",
+                      "Table 2: κ = 1.48e-5, n = 1"),
+      });
+}
+
+void readSample(const Schema& sc, const Dictionary& d, SampleSpec& s) {
+  sc.allowOnly(d, "sample");
+  s.length = sc.scalar(d, "sample.length");
+  s.height = sc.scalar(d, "sample.height");
+  s.width = sc.scalar(d, "sample.width");
+  s.solidFraction = sc.scalar(d, "sample.solidFraction");
+}
+
+void readChannel(const Schema& sc, const Dictionary& d, ChannelSpec& c) {
+  sc.allowOnly(d, "channel");
+  c.length = sc.scalar(d, "channel.length");
+  c.height = sc.scalar(d, "channel.height");
+  c.sideWalls = sc.word(d, "channel.sideWalls");
+}
+
+void readParticles(const Schema& sc, const Dictionary& d, ParticleMaterial& p) {
+  sc.allowOnly(d, "particles");
+  p.diameter = sc.scalar(d, "particles.diameter");
+  p.density = sc.scalar(d, "particles.density");
+  p.youngModulus = sc.scalar(d, "particles.youngModulus");
+  p.wallYoungModulus = sc.scalar(d, "particles.wallYoungModulus");
+  p.poisson = sc.scalar(d, "particles.poissonRatio");
+  p.restitution = sc.scalar(d, "particles.restitution");
+  p.friction = sc.scalar(d, "particles.friction");
+  p.wallFriction = sc.scalar(d, "particles.wallFriction");
+  p.rollingFriction = sc.scalar(d, "particles.rollingFriction");
+  p.rollingModel = sc.word(d, "particles.rollingModel");
+  p.rollingViscousDamping = sc.scalar(d, "particles.rollingViscousDamping");
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& k) {
+  for (const auto& w : v)
+    if (w == k) return true;
+  return false;
+}
+
+std::string join(const std::vector<std::string>& w) {
+  std::string s;
+  for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
+  return s;
+}
+
+// The liquid's entries depend on its rheology; an entry of another rheology is named as such
+// (e.g. yieldStress for a Newtonian liquid), not just as "unknown".
+void readLiquid(const Schema& sc, const Dictionary& d, SceneProperties& s) {
+  Rheology& r = s.liquid;
+  r.model = sc.word(d, "liquid.rheology");
+  const std::vector<std::string> allowed = sc.keys("liquid", r.model);
+  for (const auto& k : d.keys())
+    if (!contains(allowed, k) && contains(sc.keys("liquid"), k))
+      d.fail(k,
+             "is not a parameter of rheology " + r.model + "; its entries are: " + join(allowed));
+  d.allowOnly(allowed);
+
+  r.density = sc.scalar(d, "liquid.density");
+  if (r.model == "Newtonian") {
+    r.viscosity = sc.scalar(d, "liquid.viscosity");
+  } else {
+    r.yieldStress = sc.scalar(d, "liquid.yieldStress");
+    if (r.model == "HerschelBulkley") {
+      r.consistency = sc.scalar(d, "liquid.consistency");
+      r.flowIndex = sc.scalar(d, "liquid.flowIndex");
+    } else {
+      // Bingham: tau = tau_c + mu_p gamma_dot, i.e. Herschel-Bulkley with n = 1.
+      const bool hasMu = d.has("plasticViscosity"), hasK = d.has("consistency");
+      if (hasMu && hasK)
+        d.fail("consistency",
+               "give either plasticViscosity or consistency (the same coefficient for "
+               "Bingham), not both");
+      if (!hasMu && !hasK)
+        d.fail("plasticViscosity",
+               "missing (required): a Bingham liquid needs plasticViscosity (Pa s), allowed "
+               "range (0, inf) (or consistency, its synonym)");
+      r.consistency = sc.scalar(d, hasMu ? "liquid.plasticViscosity" : "liquid.consistency");
+      if (d.has("flowIndex")) {
+        const double n = sc.scalar(d, "liquid.flowIndex");
+        if (n != 1.0)
+          d.fail("flowIndex", "value " + num(n) +
+                                  ": a Bingham liquid has n = 1 (remove the entry, or use "
+                                  "rheology HerschelBulkley)");
+      }
+      r.flowIndex = 1.0;
+    }
+    r.viscosityCap = sc.scalar(d, "liquid.viscosityCap");
+    const double mu1 = r.yieldStress + r.consistency;  // apparent viscosity at 1/s (Pa s)
+    if (r.viscosityCap <= mu1)
+      d.fail("viscosityCap", "value " + num(r.viscosityCap) +
+                                 " Pa s must exceed the apparent viscosity at a shear rate of "
+                                 "1/s, yieldStress + consistency = " +
+                                 num(mu1) +
+                                 " Pa s (a lower cap replaces the rheology by a Newtonian "
+                                 "liquid where it matters); allowed range (" +
+                                 num(mu1) + ", inf)");
+  }
+  s.surfaceTension = sc.scalar(d, "liquid.surfaceTension");
+
+  const Dictionary a = d.subDictOrEmpty("air");
+  sc.allowOnly(a, "liquid.air");
+  s.air.density = sc.scalar(a, "liquid.air.density");
+  s.air.viscosity = sc.scalar(a, "liquid.air.viscosity");
+  if (s.air.density >= r.density)
+    d.fail("density", "value " + num(r.density) + " must exceed the air density (" +
+                          num(s.air.density) + " kg/m3): the liquid lies under the air");
+}
+
+// Rules between entries. The outlet lies downstream of the gate, beyond the front grain when
+// there are grains; the open top lies above the column: a liquid needs air above it, and a
+// grain whose top touches y = H is not in the deletion region of the first pass.
+void checkGeometry(const Dictionary& scene, const SceneProperties& s) {
+  const Dictionary& sample = scene.subDict("sample");
+  const Dictionary& channel = scene.subDict("channel");
+  const double d = s.grains() ? s.particles.diameter : 0.0;
+  if (s.grains()) {
+    const std::pair<const char*, double> sizes[] = {
+        {"length", s.sample.length}, {"height", s.sample.height}, {"width", s.sample.width}};
+    for (const auto& [key, size] : sizes)
+      if (size < d)
+        sample.fail(key, "value " + num(size) + " m is below one particle diameter (" + num(d) +
+                             " m); allowed range [" + num(d) + ", inf)");
+  }
+  if (s.channel.length <= s.sample.length + d)
+    channel.fail("length", "value " + num(s.channel.length) + " must exceed the sample length" +
+                               (s.grains() ? " plus one particle diameter" : "") + " (" +
+                               num(s.sample.length + d) +
+                               " m): the outlet lies downstream of the gate");
+  if (s.channel.height <= s.sample.height)
+    channel.fail("height", "value " + num(s.channel.height) + " must exceed the sample height (" +
+                               num(s.sample.height) + " m): the open top lies above the column");
+}
+}  // namespace
+
+double ParticleMaterial::volume() const { return kPi / 6.0 * diameter * diameter * diameter; }
+double ParticleMaterial::mass() const { return density * volume(); }
+
+const Schema& SceneProperties::schema() {
+  static const Schema s = makeSchema();
+  return s;
+}
+
+std::string SceneProperties::readContent(const Dictionary& scene) {
+  return schema().word(scene, "content");
+}
+
+SceneProperties SceneProperties::read(const Dictionary& scene, Half half) {
+  const Schema& sc = schema();
+  sc.allowOnly(scene, "");
+  SceneProperties s;
+  s.content = readContent(scene);
+  readSample(sc, scene.subDict("sample"), s.sample);
+  readChannel(sc, scene.subDict("channel"), s.channel);
+  if (s.grains()) readParticles(sc, scene.subDictOrEmpty("particles"), s.particles);
+  if (half == Half::fluid && s.fluid()) readLiquid(sc, scene.subDict("liquid"), s);
+  if (half == Half::grains && s.content == "mixture")
+    s.liquid.density = sc.scalar(scene.subDict("liquid"), "liquid.density");
+  checkGeometry(scene, s);
+  return s;
+}
+
+}  // namespace mixflow

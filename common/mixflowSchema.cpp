@@ -1,0 +1,108 @@
+// mixflowSchema: prints the Markdown tables of the declared dictionaries, and keeps the
+// generated tables of a document (docs/parameters.md) equal to them.
+//   mixflowSchema NAME          the table NAME (sceneProperties, sceneProperties.liquid, ...)
+//   mixflowSchema -check DOC    exit 1 when a block <!-- BEGIN generated: NAME --> ...
+//                               <!-- END generated --> of DOC differs from the declarations
+//   mixflowSchema -update DOC   rewrites those blocks (the text around them is kept)
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "CfdDict.h"
+#include "DemDict.h"
+#include "Dictionary.h"
+#include "MixflowProperties.h"
+#include "SceneProperties.h"
+
+namespace {
+using mixflow::Schema;
+
+struct Table {
+  std::string name;
+  const Schema& schema;
+  std::vector<std::string> sections;
+};
+
+std::vector<Table> tables() {
+  return {
+      {"sceneProperties",
+       mixflow::SceneProperties::schema(),
+       {"", "sample", "channel", "particles"}},
+      {"sceneProperties.liquid", mixflow::SceneProperties::schema(), {"liquid", "liquid.air"}},
+      {"demDict", mixflow::DemDict::schema(), {"", "velocityProfile", "savage", "settle"}},
+      {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
+      {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
+  };
+}
+
+const std::string kEnd = "<!-- END generated -->";
+std::string beginMarker(const std::string& name) {
+  return "<!-- BEGIN generated: " + name + " -->";
+}
+
+// DOC with every generated block replaced by the declarations' table; `stale` gets the names of
+// the blocks that differed, `missing` those of the tables DOC has no block for.
+std::string regenerate(const std::string& doc, std::vector<std::string>& stale,
+                       std::vector<std::string>& missing) {
+  std::string out = doc;
+  for (const auto& t : tables()) {
+    const std::string begin = beginMarker(t.name) + "\n";
+    const size_t b = out.find(begin);
+    const size_t e = b == std::string::npos ? b : out.find(kEnd, b);
+    if (b == std::string::npos || e == std::string::npos) {
+      missing.push_back(t.name);
+      continue;
+    }
+    const size_t from = b + begin.size();
+    const std::string table = t.schema.markdown(t.sections);
+    if (out.compare(from, e - from, table) != 0) stale.push_back(t.name);
+    out.replace(from, e - from, table);
+  }
+  return out;
+}
+
+int usage() {
+  std::cerr << "usage: mixflowSchema NAME | -check DOC | -update DOC\n  NAME:";
+  for (const auto& t : tables()) std::cerr << " " << t.name;
+  std::cerr << "\n";
+  return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (args.size() == 1) {
+      for (const auto& t : tables())
+        if (t.name == args[0]) {
+          std::cout << t.schema.markdown(t.sections);
+          return 0;
+        }
+      return usage();
+    }
+    if (args.size() != 2 || (args[0] != "-check" && args[0] != "-update")) return usage();
+    const std::string& path = args[1];
+    std::vector<std::string> stale, missing;
+    const std::string doc = mixflow::readTextFile(path);
+    const std::string fresh = regenerate(doc, stale, missing);
+    for (const auto& m : missing)
+      std::cerr << path << ": no block " << beginMarker(m) << " ... " << kEnd << "\n";
+    if (!missing.empty()) return 1;
+    if (args[0] == "-update") {
+      if (fresh != doc) std::ofstream(path) << fresh;
+      std::cout << path << ": " << stale.size() << " generated table(s) rewritten\n";
+      return 0;
+    }
+    for (const auto& s : stale)
+      std::cerr << path << ": the table '" << s
+                << "' differs from the declarations; regenerate it with: " << argv[0] << " -update "
+                << path << "\n";
+    if (!stale.empty()) return 1;
+    std::cout << path << ": every generated table matches the declarations\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "mixflowSchema: " << e.what() << "\n";
+    return 1;
+  }
+}
