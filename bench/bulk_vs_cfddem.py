@@ -115,9 +115,7 @@ def main():
                   f"front {b['granular_front_m']} m against {ref['granular_front_m']} m", flush=True)
         out["scenes"][scene] = {"cfddem": ref, "bulk": bulks}
     if a.json:
-        with open(a.json, "w") as f:
-            json.dump(out, f, indent=1)
-            f.write("\n")
+        outputs.write_json(a.json, out)
         print(f"wrote {a.json}")
 
 

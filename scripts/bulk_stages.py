@@ -25,6 +25,8 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import outputs  # noqa: E402
 
 
 def env():
@@ -117,10 +119,7 @@ def main():
               f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
               f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU {rec['A']['solver_cpu_s']} / "
               f"{rec['B']['solver_cpu_s']} s", flush=True)
-    os.makedirs(os.path.dirname(a.out), exist_ok=True)
-    with open(a.out, "w") as f:
-        json.dump(out, f, indent=1)
-        f.write("\n")
+    outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
 

@@ -11,7 +11,6 @@ usage: /usr/bin/python3 scripts/initial_pressure_check.py [--work runs/initial_p
 """
 
 import argparse
-import json
 import os
 import re
 import shutil
@@ -24,6 +23,7 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
 import reproducibility  # noqa: E402
 from mixflow import foamcase as fc  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 G = 9.81
 
@@ -112,9 +112,7 @@ def main():
                             for r in w["column"]))
         print(f"{label:11s} grains' potential energy released by 0.3 s: "
               f"{out['runs'][label]['grain_pe_released_J']:.4f} J")
-    with open(a.out, "w") as f:
-        json.dump(out, f, indent=1)
-        f.write("\n")
+    outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
 

@@ -23,6 +23,8 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import outputs  # noqa: E402
 COLUMN = os.path.join(ROOT, "tests", "collapse", "column")
 D = 0.012
 
@@ -99,9 +101,7 @@ def main():
             print(f"L {L:g} m: alpha {rec['alpha']:.3f}, lambda {rec['lambda']:.3f} over the "
                   f"{len(pts)} columns with an intact summit", flush=True)
         out["lengths"][f"{L:g}"] = rec
-    with open(a.out, "w") as f:
-        json.dump(out, f, indent=1)
-        f.write("\n")
+    outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
 

@@ -22,7 +22,6 @@ Writes OUT/summary.json and OUT/differences.csv.
 
 import argparse
 import csv
-import json
 import os
 import re
 import shutil
@@ -125,14 +124,8 @@ def main():
                 print(f"{scene} {label:10s} {q:17s} max |diff| {v['max_abs']:.3g}, at "
                       f"{v['end_time_s']:g} s {v['end_abs']:.3g} ({100 * v['end_rel']:.3g} % of "
                       f"{v['serial_end']:.4g})", flush=True)
-    os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "summary.json"), "w") as f:
-        json.dump(summary, f, indent=1)
-        f.write("\n")
-    with open(os.path.join(a.out, "differences.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    outputs.write_json(os.path.join(a.out, "summary.json"), summary)
+    outputs.write_csv(os.path.join(a.out, "differences.csv"), rows)
     print(f"wrote {a.out}/summary.json, differences.csv")
 
 

@@ -83,3 +83,20 @@ AT = {"interpolate": interpolated, "nearest": nearest}
 def at(rows, key, t, method):
     """ROWS' KEY at time T, METHOD 'interpolate' or 'nearest'."""
     return AT[method](rows, key, t)
+
+
+def write_json(path, obj, indent=1):
+    """OBJ as JSON at PATH (its directory made if needed), ending with a newline."""
+    import json
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w") as f:
+        json.dump(obj, f, indent=indent)
+        f.write("\n")
+
+
+def write_csv(path, rows):
+    """ROWS (dicts with the same keys) as CSV at PATH, a header from the first row's keys."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
