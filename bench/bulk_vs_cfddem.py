@@ -26,18 +26,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import outputs  # noqa: E402
-
-
-def last_execution_time(log):
-    """The last 'ExecutionTime = X s' of an OpenFOAM log (CPU seconds), or None."""
-    t = None
-    with open(log) as f:
-        for line in f:
-            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
-            if m:
-                t = float(m.group(1))
-    return t
+from mixflow import foamcase, outputs  # noqa: E402
 
 
 def settle_wall(log):
@@ -80,7 +69,7 @@ def run(label, scene, tier, work, sets):
     solver = "mixflowCoupled" if os.path.isfile(os.path.join(case, "log.mixflowCoupled")) \
         else "mixflowBulkFoam"
     rec = {"label": label, "tier": tier, "set": sets, "solver": solver, "suite_wall_s": wall,
-           "solver_cpu_s": last_execution_time(os.path.join(case, f"log.{solver}"))}
+           "solver_cpu_s": foamcase.last_execution_time(os.path.join(case, f"log.{solver}"))}
     dem_log = os.path.join(case, "log.mixflowDem")
     rec["settle_wall_s"] = settle_wall(dem_log) if os.path.isfile(dem_log) else None
     rec["simulated_s"], rec["granular_front_m"] = end_state(case)

@@ -26,7 +26,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import outputs  # noqa: E402
+from mixflow import foamcase, outputs  # noqa: E402
 
 
 def env():
@@ -40,16 +40,6 @@ def last(path, column):
     with open(path) as f:
         rows = list(csv.DictReader(ln for ln in f if ln.strip() and not ln.startswith("#")))
     return float(rows[-1]["time_s"]), float(rows[-1][column])
-
-
-def cpu(case):
-    t = None
-    with open(os.path.join(case, "log.mixflowBulkFoam")) as f:
-        for line in f:
-            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
-            if m:
-                t = float(m.group(1))
-    return t
 
 
 def run(cmd, cwd=None, fatal=True):
@@ -68,7 +58,8 @@ def run(cmd, cwd=None, fatal=True):
 def result(case, ref_front):
     t, front = last(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
     return {"time_s": t, "front_m": front, "front_error": front / ref_front - 1,
-            "solver_cpu_s": cpu(case)}
+            "solver_cpu_s": foamcase.last_execution_time(
+                os.path.join(case, "log.mixflowBulkFoam"))}
 
 
 def main():

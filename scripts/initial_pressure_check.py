@@ -59,11 +59,6 @@ def released(case):
     return float(rows[1][k]) - float(rows[-1][k])
 
 
-def times(case):
-    return sorted((d for d in os.listdir(case) if re.fullmatch(r"[0-9.eE+-]+", d) and d != "0"),
-                  key=float)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -101,7 +96,7 @@ def main():
         sys.exit(f"{hyd}: mixflowCoupled failed (log.mixflowCoupled)")
     out = {"command": "/usr/bin/python3 scripts/initial_pressure_check.py", "runs": {}}
     for label, case in (("solved", base), ("hydrostatic", hyd)):
-        t = times(case)
+        t = [name for value, name in fc.time_dirs(case) if value > 0]
         out["runs"][label] = {"first_write": {"time_s": float(t[0]), "column": profile(case, t[0], rho)},
                               "end": {"time_s": float(t[-1]), "column": profile(case, t[-1], rho)},
                               "grain_pe_released_J": released(case)}

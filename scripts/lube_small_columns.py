@@ -15,7 +15,6 @@ within 10 % of H0 (Lube's regime), against the experiments' wide-channel band al
 """
 import argparse
 import json
-import math
 import os
 import re
 import shutil
@@ -24,7 +23,9 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from mixflow import outputs  # noqa: E402
+from runout_fit import fit_power_law  # noqa: E402
 COLUMN = os.path.join(ROOT, "tests", "collapse", "column")
 D = 0.012
 
@@ -54,15 +55,6 @@ def run(exe, work, L, a):
     return s
 
 
-def fit(points):
-    """alpha, lambda of the least-squares line through (ln a, ln r)."""
-    n = len(points)
-    sx, sy = sum(x for x, _ in points), sum(y for _, y in points)
-    sxx, sxy = sum(x * x for x, _ in points), sum(x * y for x, y in points)
-    alpha = (n * sxy - sx * sy) / (n * sxx - sx * sx)
-    return alpha, math.exp((sy - alpha * sx) / n)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -90,13 +82,13 @@ def main():
             c["summit_intact"] = abs(c["summit_over_H0"] - 1) <= 0.1
             cols.append(c)
             if c["summit_intact"]:
-                pts.append((math.log(c["aspect_ratio"]), math.log(c["advance_over_L"])))
+                pts.append((c["aspect_ratio"], c["advance_over_L"]))
             print(f"L {L:g} m, a = {c['aspect_ratio']:.3f}: (l - L)/L = {c['advance_over_L']:.3f} "
                   f"(Lube {c['lube_advance_over_L']:.3f}), summit / H0 = {c['summit_over_H0']:.3f}, "
                   f"{s['particles_remaining']} grains, {c['stop_reason']}", flush=True)
         rec = {"columns": cols}
         if len(pts) >= 2:
-            rec["alpha"], rec["lambda"] = fit(pts)
+            rec["alpha"], rec["lambda"] = fit_power_law(*zip(*pts))
             rec["alpha_in_band"] = 0.8 <= rec["alpha"] <= 1.0
             print(f"L {L:g} m: alpha {rec['alpha']:.3f}, lambda {rec['lambda']:.3f} over the "
                   f"{len(pts)} columns with an intact summit", flush=True)

@@ -83,6 +83,17 @@ def time_dirs(case):
     return sorted(out)
 
 
+def last_execution_time(log):
+    """The last 'ExecutionTime = X s' of an OpenFOAM solver log (CPU seconds), or None."""
+    t = None
+    with open(log) as f:
+        for line in f:
+            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
+            if m:
+                t = float(m.group(1))
+    return t
+
+
 def latest_time(case):
     times = [t for t in time_dirs(case) if t[0] > 0]
     if not times:
