@@ -21,8 +21,15 @@
 
 namespace mixflow::coupling {
 
+namespace {
+// 12 (1 - eps) / eps: Christopher & Middleman's pore-wall rate over the sphere's |U - v| / d.
+double poreRateFactor(double voidfraction) {
+  return voidfraction > 0 ? 12.0 * (1.0 - voidfraction) / voidfraction : 0.0;
+}
+}  // namespace
+
 double slipShearRate(double slip, double diameter, double voidfraction, double shearRateFactor) {
-  const double pore = voidfraction > 0 ? 12.0 * (1.0 - voidfraction) / voidfraction : 0.0;
+  const double pore = poreRateFactor(voidfraction);
   return slip / diameter * std::max(shearRateFactor, pore);
 }
 
@@ -50,7 +57,7 @@ double powerLawSphereFactor(double n) {
 
 double powerLawShapeFactor(double n, double voidfraction, double shearRateFactor) {
   if (n >= 1.0) return 1.0;
-  const double pore = voidfraction > 0 ? 12.0 * (1.0 - voidfraction) / voidfraction : 0.0;
+  const double pore = poreRateFactor(voidfraction);
   const double w = pore / (pore + shearRateFactor);
   const double bed = std::pow((3 * n + 1) / (4 * n), n);
   return std::pow(powerLawSphereFactor(n), 1 - w) * std::pow(bed, w);
