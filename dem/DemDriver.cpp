@@ -59,6 +59,7 @@ SettleReport DemDriver::settle() {
     lig_->commands(
         resumeSetupCommands(s, (fs::path(s.caseDir) / from->restartFile).string(), dt_, true));
     t = from->time;
+    settleSlot_ = from->restartFile == SettleCheckpoint::slotFile(0) ? 1 : 0;
     top = s.sample.height;  // only sets the free-fall time, which has passed
     if (rank_ == 0)
       out_ << "[dem] settling continues from its checkpoint at t = " << fmt(t, 6) << " s ("
@@ -139,8 +140,8 @@ void DemDriver::writeSettleCheckpoint(double t, const std::string& fingerprint) 
   SettleCheckpoint c;
   c.time = t;
   c.fingerprint = fingerprint;
-  c.restartFile = SettleCheckpoint::nextRestartFile(scene_.caseDir);
-  MPI_Barrier(comm_);  // every rank read the state before rank 0 replaces it
+  c.restartFile = SettleCheckpoint::slotFile(settleSlot_);
+  settleSlot_ = 1 - settleSlot_;  // the state keeps naming the other until this one is written
   lig_->writeRestart((fs::path(scene_.caseDir) / c.restartFile).string());
   if (rank_ == 0) c.write(scene_.caseDir);
 }

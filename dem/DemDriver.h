@@ -59,6 +59,7 @@ class DemDriver {
   long step0_ = 0;  // step at which the gate opened (t = 0)
   std::unique_ptr<CollapseRecorder> rec_;
   int restartSlot_ = 0;
+  int settleSlot_ = 0;  // the settle checkpoint's next restart file (SettleCheckpoint::slotFile)
   SettleReport settled_;
 };
 

@@ -17,14 +17,7 @@ std::string SettleCheckpoint::statePath(const std::string& caseDir) {
   return (fs::path(caseDir) / "dem" / "settle.checkpoint.state").string();
 }
 
-std::string SettleCheckpoint::nextRestartFile(const std::string& caseDir) {
-  const fs::path state = statePath(caseDir);
-  if (fs::exists(state)) {
-    const Dictionary d = Dictionary::readFile(state.string());
-    if (d.has("restartFile") && d.word("restartFile", {}) == kRestarts[0]) return kRestarts[1];
-  }
-  return kRestarts[0];
-}
+std::string SettleCheckpoint::slotFile(int slot) { return kRestarts[slot == 0 ? 0 : 1]; }
 
 std::optional<SettleCheckpoint> SettleCheckpoint::find(const std::string& caseDir,
                                                        const std::string& fingerprint,

@@ -18,8 +18,8 @@ struct SettleCheckpoint {
   std::string fingerprint;  // of the settling inputs it was made from
 
   static std::string statePath(const std::string& caseDir);
-  // The next checkpoint's restart file (not the one the current state names).
-  static std::string nextRestartFile(const std::string& caseDir);
+  // The restart file of slot 0 or 1, relative to the case directory.
+  static std::string slotFile(int slot);
   // The checkpoint of this fingerprint, if any; one of other inputs is reported on `out` and
   // ignored (the settle then starts again and replaces it).
   static std::optional<SettleCheckpoint> find(const std::string& caseDir,
