@@ -71,6 +71,11 @@ Schema makeSchema() {
           scalarParam("arrestMinTime", m.arrestMinTime, Range::nonNegative(), "s", ""),
           textParam("processors", m.processors, "LIGGGHTS processor grid")
               .alsoAllowed("three of * or positive integers"),
+          scalarParam("balanceInterval", m.balanceInterval, Range::nonNegative(), "s",
+                      "of the collapse between re-balances of the DEM's x slabs so that each "
+                      "rank holds about the same number of particles (at the start of the settling, "
+                      "at the gate opening and then at this interval; dry scenes with an "
+                      "N × 1 × 1 grid); 0: the equal slabs LIGGGHTS makes"),
           dictParam("settle", "the settling of the sample behind the gate"),
           scalarParam("settle.friction", s.friction, Range::nonNegative(), "",
                       "**Open choice** (sample preparation): particle friction while settling; "
@@ -150,6 +155,7 @@ DemDict DemDict::read(const Dictionary& d) {
   m.arrestFrontDiameters = sc.scalar(d, "arrestFrontDiameters");
   m.arrestWindow = sc.scalar(d, "arrestWindow");
   readProcessors(sc, d, m.processors);
+  m.balanceInterval = sc.scalar(d, "balanceInterval");
   readSettle(sc, d.subDictOrEmpty("settle"), r.settle);
   return r;
 }

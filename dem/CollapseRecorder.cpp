@@ -18,6 +18,18 @@ namespace fs = std::filesystem;
 namespace {
 constexpr double kG = 9.81;
 std::string fmt(double v, int precision = 10) { return formatNumber(v, precision); }
+
+// postProcessing/dem (returned) and VTK/particles, made on rank 0.
+std::string createOutputDirs(const Scene& scene, MPI_Comm comm) {
+  const fs::path out = fs::path(scene.caseDir) / "postProcessing" / "dem";
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0) {
+    fs::create_directories(out);
+    fs::create_directories(fs::path(scene.caseDir) / "VTK" / "particles");
+  }
+  return out.string();
+}
 }  // namespace
 
 std::vector<std::array<double, 3>> gatherCentres(const ParticleView& p, MPI_Comm comm) {
@@ -33,14 +45,16 @@ std::vector<std::array<double, 3>> gatherCentres(const ParticleView& p, MPI_Comm
 
 CollapseRecorder::CollapseRecorder(const Scene& scene, LiggghtsSession& lig, MPI_Comm comm,
                                    long step0, bool append)
-    : scene_(scene), lig_(lig), comm_(comm), step0_(step0) {
+    : scene_(scene),
+      lig_(lig),
+      comm_(comm),
+      step0_(step0),
+      outDir_(createOutputDirs(scene, comm)),
+      load_(outDir_, comm, append) {
   MPI_Comm_rank(comm, &rank_);
   dt_ = lig.timeStep();
   sampleEvery_ = std::max(1L, std::lround(scene.dem.sampleInterval / dt_));
-  outDir_ = (fs::path(scene.caseDir) / "postProcessing" / "dem").string();
   if (rank_ == 0) {
-    fs::create_directories(outDir_);
-    fs::create_directories(fs::path(scene.caseDir) / "VTK" / "particles");
     series_.open(fs::path(outDir_) / "timeSeries.csv", append ? std::ios::app : std::ios::trunc);
     if (!series_) throw std::runtime_error("cannot write " + outDir_ + "/timeSeries.csv");
     if (!append)
@@ -86,6 +100,7 @@ Energies CollapseRecorder::sample(CollapseReport& rep) {
   rep.lost += expected_ - e.count;
   expected_ = e.count;
   rep.remaining = e.count;
+  load_.sample(t, lig_);
   // Savage number at the section: u(y) on bins of d in the slab |x - x_s| <= d.
   const VelocityProfile vp = velocityProfile(p, s.dem.savageX, d, d, s.channel.height, comm_);
   const TopShear top = topLayerShear(vp, d, s.dem.savageLayers, 2);

@@ -1,8 +1,9 @@
 // Records a granular collapse after the gate opened, for the dry driver (DemDriver) and the
 // coupled solver (mixture scenes) alike: deletes the particles that left through the outlet or the
 // top (counted), writes the time-series row (fronts, energies, Savage number at the section), the
-// velocity profile u(y) at its time, particle snapshots with their ParaView index, and at the end
-// the deposit profile h(x) and summary.json. Outputs: <case>/postProcessing/dem, <case>/VTK.
+// velocity profile u(y) at its time, the per-rank load (RankLoad.h), particle snapshots with their
+// ParaView index, and at the end the deposit profile h(x) and summary.json. Outputs:
+// <case>/postProcessing/dem, <case>/VTK.
 #pragma once
 
 #include <mpi.h>
@@ -14,6 +15,7 @@
 
 #include "LiggghtsSession.h"
 #include "Observables.h"
+#include "RankLoad.h"
 #include "Scene.h"
 
 namespace mixflow::dem {
@@ -79,6 +81,7 @@ class CollapseRecorder {
   long expected_ = 0;  // particles expected at the next sample (the shortfall was lost)
   std::string outDir_;
   std::ofstream series_;
+  RankLoad load_;
 };
 
 }  // namespace mixflow::dem

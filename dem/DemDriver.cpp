@@ -17,6 +17,7 @@
 #include "SampleFill.h"
 #include "SettleCheckpoint.h"
 #include "SettledSample.h"
+#include "SlabBalance.h"
 
 namespace mixflow::dem {
 
@@ -25,6 +26,18 @@ namespace fs = std::filesystem;
 namespace {
 constexpr double kG = 9.81;
 std::string fmt(double v, int precision = 10) { return formatNumber(v, precision); }
+
+// Keeps the header and the rows of a CSV whose first column (time) is <= tMax.
+void dropRowsAfter(const fs::path& csv, double tMax) {
+  if (!fs::exists(csv)) return;
+  std::ifstream in(csv);
+  std::string line, kept;
+  for (bool header = true; std::getline(in, line); header = false)
+    if (header || std::stod(line.substr(0, line.find(','))) <= tMax) kept += line + '\n';
+  in.close();
+  std::ofstream(csv.string() + ".tmp") << kept;
+  fs::rename(csv.string() + ".tmp", csv);
+}
 
 double meanKineticPerParticle(const Energies& e) {
   return e.count > 0 ? e.kinetic() / static_cast<double>(e.count) : 0.0;
@@ -90,6 +103,11 @@ SettleReport DemDriver::settle() {
   double nextCheckpoint = every > 0 ? (std::floor(t / every + 1e-9) + 1) * every : 0;
   Progress progress("settle", t, s.settle.maxTime, out_);
   bool converged = false;
+  // The sample stays behind the gate while it settles: one balance at the start holds.
+  if (s.dem.balanceInterval > 0 && !balanceSlabs(*lig_, comm_) && rank_ == 0)
+    out_ << "[dem] balanceInterval: the processor grid is not x slabs (set processors \"* 1 1\") "
+            "or there is one rank; the slabs stay equal"
+         << std::endl;
   while (t < s.settle.maxTime) {
     lig_->run(nChunk);
     t += nChunk * dt_;
@@ -226,16 +244,9 @@ CollapseReport DemDriver::resume(SettleReport& settled) {
   lig_->commands(resumeSetupCommands(scene_, restartFile, dt_));
   step0_ = 0;  // the restart carries the step count since the gate opened
   // Rows written after the restart state are recomputed: drop them.
-  if (rank_ == 0) {
-    const fs::path csv = fs::path(outDir_) / "timeSeries.csv";
-    std::ifstream in(csv);
-    std::string line, kept;
-    for (bool header = true; std::getline(in, line); header = false)
-      if (header || std::stod(line.substr(0, line.find(','))) <= t + 0.5 * dt_) kept += line + '\n';
-    in.close();
-    std::ofstream(csv.string() + ".tmp") << kept;
-    fs::rename(csv.string() + ".tmp", csv);
-  }
+  if (rank_ == 0)
+    for (const char* name : {"timeSeries.csv", "rankLoad.csv"})
+      dropRowsAfter(fs::path(outDir_) / name, t + 0.5 * dt_);
   return runCollapse(rep, st.switchOr("profileDone", false), true);
 }
 
@@ -251,7 +262,12 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
   Progress progress("dem " + s.name, t, s.endTime, out_);
   std::deque<std::pair<double, double>> frontHistory;  // (t, front) over the arrest window
   rep.stopReason = "endTime";
+  double nextBalance = t;
   while (t < s.endTime - 0.5 * dt_) {
+    if (s.dem.balanceInterval > 0 && t >= nextBalance - 0.5 * dt_) {
+      balanceSlabs(*lig_, comm_);
+      nextBalance = t + s.dem.balanceInterval;
+    }
     const long n = std::min(rec.sampleEvery(), std::max(1L, std::lround((s.endTime - t) / dt_)));
     lig_->run(n);
     t = rec.time();

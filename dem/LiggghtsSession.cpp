@@ -4,6 +4,7 @@
 #include <atom.h>
 #include <input.h>
 #include <lammps.h>
+#include <timer.h>
 #include <update.h>
 
 #include <cstdlib>
@@ -66,6 +67,10 @@ void LiggghtsSession::run(long nSteps) {
   const double t0 = MPI_Wtime();
   command("run " + std::to_string(nSteps) + (needSetup_ ? " post no" : " pre no post no"));
   runSeconds_ += MPI_Wtime() - t0;
+  // `run` zeroes the timers at its start, so they hold this run's split.
+  const double* timer = lmp_->timer->array;
+  computeSeconds_ += timer[TIME_PAIR] + timer[TIME_NEIGHBOR] + timer[TIME_MODIFY];
+  commSeconds_ += timer[TIME_COMM];
   needSetup_ = false;
 }
 

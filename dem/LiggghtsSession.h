@@ -37,6 +37,10 @@ class LiggghtsSession {
   void writeRestart(const std::string& file);
   // Wall seconds spent inside LIGGGHTS `run` commands (the rest is the driver's own work).
   double runSeconds() const { return runSeconds_; }
+  // This rank's share of those runs as LIGGGHTS' timers split it: compute (pair, neighbour lists,
+  // fixes) and communication, which includes waiting for slower ranks (the imbalance's cost).
+  double computeSeconds() const { return computeSeconds_; }
+  double commSeconds() const { return commSeconds_; }
 
   ParticleView particles() const;
   long atomCount() const;
@@ -53,6 +57,8 @@ class LiggghtsSession {
   std::ofstream script_;
   bool needSetup_ = true;
   double runSeconds_ = 0;
+  double computeSeconds_ = 0;
+  double commSeconds_ = 0;
 };
 
 }  // namespace mixflow::dem

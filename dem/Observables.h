@@ -1,5 +1,5 @@
-// Granular observables of a dam break (docs/model.md §8), computed from the particles each rank owns
-// and reduced over MPI. Functions on plain arrays so tests can feed them known configurations.
+// Granular observables of a dam break (docs/model.md §8), computed from the particles each rank
+// owns and reduced over MPI. Functions on plain arrays so tests can feed them known configurations.
 #pragma once
 
 #include <mpi.h>
@@ -32,10 +32,10 @@ Energies energies(const ParticleView& p, double gravity, MPI_Comm comm);
 // Values from every rank gathered on rank 0 (empty elsewhere).
 std::vector<double> gatherOnRoot(const std::vector<double>& local, MPI_Comm comm);
 
-// Front of the main mass (docs/model.md §8): particles are connected when their surface gap is at most
-// maxGap; the main mass is the largest connected cluster, and the front is its largest x plus r.
-// Detached particles (saltating or scattered ahead) never move the front. periodicWidth > 0 wraps
-// z.
+// Front of the main mass (docs/model.md §8): particles are connected when their surface gap is at
+// most maxGap; the main mass is the largest connected cluster, and the front is its largest x plus
+// r. Detached particles (saltating or scattered ahead) never move the front. periodicWidth > 0
+// wraps z.
 double granularFront(const std::vector<std::array<double, 3>>& centres, double radius,
                      double maxGap, double periodicWidth);
 

@@ -15,6 +15,7 @@ DEM_SERIES = "postProcessing/dem/timeSeries.csv"  # particle counts, granular fr
 DEM_SUMMARY = "postProcessing/dem/summary.json"  # settled sample, moduli, runout, stop reason
 DEPOSIT = "postProcessing/dem/depositProfile.csv"  # final h(x)
 VELOCITY_PROFILE = "postProcessing/dem/velocityProfile.csv"  # u(y) at a section and time
+RANK_LOAD = "postProcessing/dem/rankLoad.csv"  # per MPI rank: particles, LIGGGHTS compute/comm s
 LIQUID_SERIES = "postProcessing/liquid/timeSeries.csv"  # liquid fronts, depths, Froude number
 LIQUID_PROFILES = "postProcessing/liquid/profiles.csv"
 EXCHANGE = "postProcessing/coupling/exchange.csv"  # fluid-particle exchange, one row an exchange

@@ -8,6 +8,8 @@ serial run (e.g. atoms re-ordered by a restart write) moves this small column's 
 ±0.03 m (0.307 to 0.371 m seen when each restart write left LIGGGHTS on stale neighbour
 lists for the next steps, which LiggghtsSession::writeRestart now prevents), because the front particle of a thin tail attaches or detaches; a
 future LIGGGHTS that were not bit-reproducible across ranks would need a statistical comparison."""
+import csv
+import os
 import sys
 
 from run_column import run
@@ -24,6 +26,24 @@ assert serial["particles_remaining"] + serial["deleted_outlet"] + serial["delete
     serial["settled"]["particles"], "particle count not conserved (serial)"
 assert parallel["particles_remaining"] + parallel["deleted_outlet"] + parallel["deleted_top"] + parallel["lost"] == \
     parallel["settled"]["particles"], "particle count not conserved (np2)"
+
+# The per-rank load (rankLoad.csv) accounts for every particle of the series at every sample, on
+# both ranks, with compute seconds that only grow.
+out = os.path.join(work, "np2", "postProcessing", "dem")
+series = {r["time_s"]: int(r["particles"]) for r in csv.DictReader(open(os.path.join(out, "timeSeries.csv")))}
+load = list(csv.DictReader(open(os.path.join(out, "rankLoad.csv"))))
+by_time = {}
+for r in load:
+    by_time.setdefault(r["time_s"], []).append(r)
+assert set(by_time) == set(series), "rankLoad.csv and timeSeries.csv sample different times"
+for t, rows in by_time.items():
+    assert sorted(int(r["rank"]) for r in rows) == [0, 1], f"rankLoad.csv at t = {t}: ranks {rows}"
+    held = sum(int(r["particles"]) for r in rows)
+    assert held == series[t], f"rankLoad.csv at t = {t}: ranks hold {held}, series has {series[t]}"
+for rank in ("0", "1"):
+    work_s = [float(r["dem_compute_s"]) for r in load if r["rank"] == rank]
+    assert all(b >= a for a, b in zip(work_s, work_s[1:])), f"rank {rank}: compute seconds decrease"
+print(f"rankLoad.csv: {len(by_time)} samples, particles of both ranks = series particles")
 if diff > tol:
     sys.exit(f"FAIL: serial and parallel runouts differ by {diff:.4f} m > {tol:.4f} m")
 print("PASS")

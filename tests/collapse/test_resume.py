@@ -68,6 +68,9 @@ if max(gaps) > 1.01 * dt_sample:
     failures.append(f"gap in the time series: {max(gaps):.5f} s > {dt_sample} s")
 if abs(times[-1] - 0.45) > 1e-3:
     failures.append(f"resumed run ended at {times[-1]} s, not 0.45 s")
+load = list(csv.DictReader(open(os.path.join(case, "postProcessing", "dem", "rankLoad.csv"))))
+if [r["time_s"] for r in load] != [r["time_s"] for r in rows]:
+    failures.append("rankLoad.csv does not continue with the time series (one row a sample)")
 total = summary["particles_remaining"] + summary["deleted_outlet"] + summary["deleted_top"] + summary["lost"]
 if total != summary["settled"]["particles"]:
     failures.append(f"particles not conserved: {total} != {summary['settled']['particles']}")
