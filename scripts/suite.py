@@ -42,7 +42,10 @@ TIERS = os.path.join(CASES, "tiers")
 # Files a tier may name (top-level blocks of a tier file) and where they are in a case.
 FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
          "controlDict": "system/controlDict", "sceneProperties": "constant/sceneProperties",
-         "couplingProperties": "constant/couplingProperties"}
+         "couplingProperties": "constant/couplingProperties",
+         "bulkProperties": "constant/bulkProperties"}
+# Mixture files whose every entry has a default (absent: the defaults): --set creates them.
+CREATED_BY_SET = {"bulkProperties"}
 CONTENTS = ("particles", "liquid", "mixture")
 TIER_KEYS = {"FoamFile", "description", "contentSpecific", "scenes"} | set(FILES) | set(CONTENTS)
 # Outputs of a run (not copied from cases/, removed from nothing).
@@ -156,15 +159,20 @@ def tier_edits(case_dir, tier, scene):
     for fkey, tree in tier.overrides(scene, content).items():
         rel = FILES[fkey]
         path = os.path.join(case_dir, rel)
-        if not os.path.isfile(path):
+        if (not os.path.isfile(path) and fkey in CREATED_BY_SET and tier.sets.get(fkey)
+                and content == "mixture"):
+            text = (f"FoamFile {{ version 2.0; format ascii; class dictionary; object {fkey}; }}\n"
+                    "// Created by scripts/suite.py --set; entries not here take their defaults\n")
+        elif not os.path.isfile(path):
             if tier.optional(fkey):
                 records += [(fkey, ".".join(p), v, "skipped") for p, v in leaves(tree)]
                 continue
             first = ".".join(next(iter(leaves(tree)))[0])
             raise DictError(f"{tier.path}: entry '{fkey}.{first}': scene {scene} ({content}) has no "
                             f"{rel}; list '{fkey}' in contentSpecific if that is expected")
-        with open(path) as f:
-            text = f.read()
+        else:
+            with open(path) as f:
+                text = f.read()
         # A block named on the command line (--set FILE.block.entry=V) is created if the case
         # lacks it (e.g. DiFeliceDragCoeffs); a tier's own overrides must find theirs.
         if tier.sets.get(fkey):

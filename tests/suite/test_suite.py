@@ -225,6 +225,17 @@ check(foamdict.unquote(rec["set"]) == var.set_text and
       "system/tier records --set")
 p = suite.plan_scene("HB+P", os.path.join(work, "variant"), suite.Tier("quick"), 1)
 check(p["status"] == "error" and "--set" in p["error"], "a copy made with other --set is refused")
+# bulkProperties, which a case may lack (every entry has a default), is created by --set.
+bulk = suite.Tier("bulk")
+bulk.set_entries(["bulkProperties.solidFraction=0.55", "bulkProperties.drifts.lambdaU=1.2"])
+texts, recs = suite.tier_edits(os.path.join(ROOT, "cases", "HB+P"), bulk, "HB+P")
+bulk_dir = os.path.join(work, "bulk-variant", "HB+P")
+suite.make_copy("HB+P", bulk_dir, bulk, texts, recs, "mixture")
+bp = foamdict.read_dict(os.path.join(bulk_dir, "constant", "bulkProperties"))
+check(bp["solidFraction"] == "0.55" and bp["drifts"]["lambdaU"] == "1.2",
+      "--set creates a mixture's bulkProperties with the entries and blocks it names")
+check(not os.path.exists(os.path.join(ROOT, "cases", "HB+P", "constant", "bulkProperties")),
+      "--set leaves cases/ alone")
 for bad_set, words in (("couplingProperties.dragIntegration", "FILE.entry=VALUE"),
                        ("nosuchFile.x=1", "not a case file")):
     ok, msg = raises(lambda b=bad_set: suite.Tier("quick").set_entries([b]), *words.split("|"))
