@@ -12,10 +12,14 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def run(exe, work, ranks):
+def run(exe, work, ranks, dem_entries=""):
+    """DEM_ENTRIES: lines appended to the copy's system/demDict."""
     if os.path.exists(work):
         shutil.rmtree(work)
     shutil.copytree(os.path.join(HERE, "column"), work)
+    if dem_entries:
+        with open(os.path.join(work, "system", "demDict"), "a") as f:
+            f.write(dem_entries + "\n")
     cmd = [exe, "-case", work]
     if ranks > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd + ["-parallel"]
