@@ -17,7 +17,6 @@ usage: scaling.py [--scenes P-quick,W+P-quick] [--ranks 1,2,4,8] [--repeat 2] [-
                   [--json results/bench/scaling.json] [--work runs/scaling]
 """
 import argparse
-import csv
 import os
 import shutil
 import statistics
@@ -59,25 +58,25 @@ def run_case(scene, ranks, work, tag, balance):
 
 
 def load_figures(case):
-    """Imbalance figures over the collapse from CASE/postProcessing/dem/rankLoad.csv."""
-    with open(os.path.join(case, "postProcessing", "dem", "rankLoad.csv")) as f:
-        rows = list(csv.DictReader(f))
-    times = sorted({float(r["time_s"]) for r in rows})
-    by_time = {t: [r for r in rows if float(r["time_s"]) == t] for t in times}
+    """Imbalance figures over the collapse from the case's rankLoad.csv (outputs.RANK_LOAD)."""
+    by_time = {}  # time -> rows of the ranks, in file order
+    for r in outputs.read_series(os.path.join(case, outputs.RANK_LOAD)):
+        by_time.setdefault(r[outputs.TIME], []).append(r)
+    times = sorted(by_time)
     ratios = []
     for t in times[1:]:
-        n = [float(r["particles"]) for r in by_time[t]]
+        n = [r["particles"] for r in by_time[t]]
         if sum(n) > 0:
             ratios.append(max(n) / statistics.mean(n))
-    first = {int(r["rank"]): float(r["dem_compute_s"]) for r in by_time[times[0]]}
-    last = {int(r["rank"]): float(r["dem_compute_s"]) for r in by_time[times[-1]]}
+    first = {int(r["rank"]): r["dem_compute_s"] for r in by_time[times[0]]}
+    last = {int(r["rank"]): r["dem_compute_s"] for r in by_time[times[-1]]}
     work = [last[k] - first[k] for k in sorted(last)]
     return {
         "ranks": len(last),
         "particles_max_over_mean": statistics.mean(ratios),
         "compute_max_over_mean": max(work) / statistics.mean(work) if sum(work) > 0 else None,
         "compute_s_per_rank": work,
-        "particles_per_rank_at_end": [int(float(r["particles"])) for r in by_time[times[-1]]],
+        "particles_per_rank_at_end": [int(r["particles"]) for r in by_time[times[-1]]],
     }
 
 
