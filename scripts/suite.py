@@ -43,9 +43,10 @@ TIERS = os.path.join(CASES, "tiers")
 FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
          "controlDict": "system/controlDict", "sceneProperties": "constant/sceneProperties",
          "couplingProperties": "constant/couplingProperties",
-         "bulkProperties": "constant/bulkProperties"}
+         "bulkProperties": "constant/bulkProperties",
+         "mixflowProperties": "constant/mixflowProperties"}
 # Mixture files whose every entry has a default (absent: the defaults): --set creates them.
-CREATED_BY_SET = {"bulkProperties"}
+CREATED_BY_SET = {"bulkProperties", "mixflowProperties"}
 CONTENTS = ("particles", "liquid", "mixture")
 TIER_KEYS = {"FoamFile", "description", "contentSpecific", "scenes"} | set(FILES) | set(CONTENTS)
 # Outputs of a run (not copied from cases/, removed from nothing).

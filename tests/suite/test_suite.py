@@ -236,6 +236,15 @@ check(bp["solidFraction"] == "0.55" and bp["drifts"]["lambdaU"] == "1.2",
       "--set creates a mixture's bulkProperties with the entries and blocks it names")
 check(not os.path.exists(os.path.join(ROOT, "cases", "HB+P", "constant", "bulkProperties")),
       "--set leaves cases/ alone")
+# So is mixflowProperties (the fluid's switches, e.g. d(eps_f)/dt in continuity).
+noddt = suite.Tier("quick")
+noddt.set_entries(["mixflowProperties.continuityVoidfractionRate=off"])
+texts, recs = suite.tier_edits(os.path.join(ROOT, "cases", "HB+P"), noddt, "HB+P")
+noddt_dir = os.path.join(work, "noddt-variant", "HB+P")
+suite.make_copy("HB+P", noddt_dir, noddt, texts, recs, "mixture")
+mp = foamdict.read_dict(os.path.join(noddt_dir, "constant", "mixflowProperties"))
+check(mp["continuityVoidfractionRate"] == "off",
+      "--set creates a mixture's mixflowProperties with the entry it names")
 for bad_set, words in (("couplingProperties.dragIntegration", "FILE.entry=VALUE"),
                        ("nosuchFile.x=1", "not a case file")):
     ok, msg = raises(lambda b=bad_set: suite.Tier("quick").set_entries([b]), *words.split("|"))
