@@ -247,7 +247,7 @@ bool Schema::flag(const Dictionary& d, const std::string& path) const {
 
 std::string Schema::text(const Dictionary& d, const std::string& path) const {
   const Param& p = typed(path, Param::Type::Text);
-  return d.has(p.key()) ? d.text(p.key()) : p.word;
+  return p.required || d.has(p.key()) ? d.text(p.key()) : p.word;
 }
 
 std::optional<double> Schema::scalarOrAuto(const Dictionary& d, const std::string& path) const {

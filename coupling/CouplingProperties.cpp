@@ -5,61 +5,115 @@
 
 #include "ForceModel.h"
 #include "MixflowProperties.h"
+#include "Schema.h"
 #include "VoidFractionModel.h"
 
 namespace mixflow::coupling {
 
+namespace {
+std::string joined(const std::vector<std::string>& words) {
+  std::string s;
+  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
+}
+
+Schema makeSchema() {
+  const CouplingProperties c{};
+  const MixflowProperties m{};
+  Param demScript = textParam("demScript", "",
+                              "the LIGGGHTS input of the coupled run "
+                              "(mixflowPrepare writes system/in.liggghts)");
+  demScript.required = true;
+  Param forceModels =
+      textParam("forceModels", "",
+                "the forces on the grains, one or more of: " + joined(ForceModel::available()) +
+                    " (each reads its `<model>Coeffs` block)");
+  forceModels.required = true;
+  std::vector<Param> params = {
+      demScript,
+      integerParam("exchangeEvery", c.exchangeEvery, 1, 1000000000,
+                   "DEM steps per exchange; the CFD step is exchangeEvery × the DEM step"),
+      forceModels,
+      wordParam("voidFractionModel", c.voidFractionModel, VoidFractionModel::available(),
+                "how a grain's volume is shared among cells (its `<model>Coeffs` block)"),
+      wordParam("interpolation", c.interpolation, {"cell", "cellPoint"},
+                "how the fluid is sampled at a grain"),
+      wordParam(
+          "sourceDistribution", c.sourceDistribution, {"volume", "centre"},
+          "where a grain's reaction force goes: the cells its volume covers, or its centre's"),
+      wordParam("dragReactionVelocity", c.dragReactionVelocity, {"particleMean", "cell"},
+                "the grain velocity in the fluid's share of the drag: mean over the interval, or "
+                "at the exchange (parameters below, \"Drag reaction velocity\")"),
+      scalarParam("voidfractionMin", m.voidfractionMin, {0.0, 1.0, false, true}, "",
+                  "ε_f floor of the coupling; may only raise mixflowProperties' voidfractionMin")
+          .shownDefault("mixflowProperties `voidfractionMin`"),
+      integerParam("logEvery", c.logEvery, 1, 1000000000,
+                   "exchanges per line of the log and row of postProcessing/coupling/exchange.csv"),
+      wordParam("dragIntegration", c.dragIntegration, {"implicit", "held"},
+                "implicit: β, U held over the interval and the drag updated with the grain's "
+                "velocity at every DEM step (stable for any β); held: the whole force held"),
+      wordParam("dragFluidResponse", c.dragFluidResponse, {"none", "share", "continuity"},
+                "implicit only: the fluid velocity the drag sees within the interval (below)"),
+      wordParam("pressureCoupling", c.pressureCoupling, {"fluid", "mixture"},
+                "mixture: the pressure equation counts the share of the grains' volume the "
+                "implicit drag carries (mixture continuity); fluid: the fluid's alone (below)")
+          .shownDefault("mixture where it applies (implicit, dragFluidResponse none), else fluid"),
+      scalarParam("dragRelaxationLimit", c.dragRelaxationLimit, Range::closed(0.0, 1.0), "",
+                  "held only: β ≤ limit × m / T (T the exchange interval); 0 = no limit"),
+      scalarParam("dragCounterflowLimit", c.dragCounterflowLimit, Range::closed(0.0, 1.0), "",
+                  "held only: β ≤ limit / c × m / T, c = (1 − ε_f) / ε_f; 0 = no limit"),
+      scalarParam("maxVelocity", c.maxVelocity, Range::positive(), "m/s",
+                  "a fluid speed above it anywhere stops the run with the place and time"),
+  };
+  for (const auto& name : ForceModel::available())
+    params.push_back(dictParam(name + "Coeffs", "coefficients of force model " + name));
+  for (const auto& name : VoidFractionModel::available())
+    params.push_back(dictParam(name + "Coeffs", "coefficients of void-fraction model " + name));
+  return Schema("constant/couplingProperties", params);
+}
+}  // namespace
+
+const Schema& CouplingProperties::schema() {
+  static const Schema s = makeSchema();
+  return s;
+}
+
 CouplingProperties CouplingProperties::read(const std::string& file) {
+  const Schema& sc = schema();
   CouplingProperties p;
   p.dict = Dictionary::readFile(file);
   const Dictionary& d = p.dict;
-  std::vector<std::string> allowed = {"FoamFile",           "demScript",
-                                      "exchangeEvery",      "forceModels",
-                                      "voidFractionModel",  "interpolation",
-                                      "sourceDistribution", "voidfractionMin",
-                                      "logEvery",           "dragRelaxationLimit",
-                                      "maxVelocity",        "dragIntegration",
-                                      "dragFluidResponse",  "dragCounterflowLimit",
-                                      "pressureCoupling",   "dragReactionVelocity"};
-  for (const auto& m : ForceModel::available()) allowed.push_back(m + "Coeffs");
-  for (const auto& m : VoidFractionModel::available()) allowed.push_back(m + "Coeffs");
-  d.allowOnly(allowed);
+  sc.allowOnly(d, "");
 
-  p.demScript = d.text("demScript");
-  p.exchangeEvery = d.integerOr("exchangeEvery", 100, 1, 1000000000);
-  std::istringstream models(d.text("forceModels"));
+  p.demScript = sc.text(d, "demScript");
+  p.exchangeEvery = sc.integer(d, "exchangeEvery");
+  std::istringstream models(sc.text(d, "forceModels"));
   for (std::string m; models >> m;) {
     if (std::find(p.forceModels.begin(), p.forceModels.end(), m) != p.forceModels.end())
       d.fail("forceModels", "model '" + m + "' is listed twice");
     p.forceModels.push_back(m);
   }
-  if (p.forceModels.empty()) {
-    std::string list;
-    for (const auto& m : ForceModel::available()) list += (list.empty() ? "" : " ") + m;
-    d.fail("forceModels", "lists no model; give one or more of: " + list);
-  }
-  p.voidFractionModel = d.wordOr("voidFractionModel", "divided", VoidFractionModel::available());
-  p.interpolation = d.wordOr("interpolation", "cell", {"cell", "cellPoint"});
-  p.sourceDistribution = d.wordOr("sourceDistribution", "volume", {"volume", "centre"});
-  p.dragReactionVelocity =
-      d.wordOr("dragReactionVelocity", "particleMean", {"particleMean", "cell"});
-  if (d.has("voidfractionMin"))
-    p.voidfractionMin =
-        d.scalar("voidfractionMin", MixflowProperties::schema().param("voidfractionMin").range);
-  p.logEvery = d.integerOr("logEvery", 1, 1, 1000000000);
-  p.dragIntegration = d.wordOr("dragIntegration", "implicit", {"implicit", "held"});
-  p.dragFluidResponse = d.wordOr("dragFluidResponse", "none", {"none", "share", "continuity"});
+  if (p.forceModels.empty())
+    d.fail("forceModels",
+           "lists no model; give one or more of: " + joined(ForceModel::available()));
+  p.voidFractionModel = sc.word(d, "voidFractionModel");
+  p.interpolation = sc.word(d, "interpolation");
+  p.sourceDistribution = sc.word(d, "sourceDistribution");
+  p.dragReactionVelocity = sc.word(d, "dragReactionVelocity");
+  if (d.has("voidfractionMin")) p.voidfractionMin = sc.scalar(d, "voidfractionMin");
+  p.logEvery = sc.integer(d, "logEvery");
+  p.dragIntegration = sc.word(d, "dragIntegration");
+  p.dragFluidResponse = sc.word(d, "dragFluidResponse");
   // Default: mixture wherever it applies (implicit drag without a dragFluidResponse mode).
   const bool mixtureApplies = p.dragIntegration == "implicit" && p.dragFluidResponse == "none";
-  p.pressureCoupling =
-      d.wordOr("pressureCoupling", mixtureApplies ? "mixture" : "fluid", {"fluid", "mixture"});
-  if (p.pressureCoupling == "mixture" &&
-      (p.dragIntegration != "implicit" || p.dragFluidResponse != "none"))
+  p.pressureCoupling = d.has("pressureCoupling") ? sc.word(d, "pressureCoupling")
+                                                 : (mixtureApplies ? "mixture" : "fluid");
+  if (p.pressureCoupling == "mixture" && !mixtureApplies)
     d.fail("pressureCoupling",
            "'mixture' needs dragIntegration implicit and dragFluidResponse none");
-  p.dragRelaxationLimit = d.scalarOr("dragRelaxationLimit", 0.5, Range::closed(0.0, 1.0));
-  p.dragCounterflowLimit = d.scalarOr("dragCounterflowLimit", 0.5, Range::closed(0.0, 1.0));
-  p.maxVelocity = d.scalarOr("maxVelocity", 100.0, Range::positive());
+  p.dragRelaxationLimit = sc.scalar(d, "dragRelaxationLimit");
+  p.dragCounterflowLimit = sc.scalar(d, "dragCounterflowLimit");
+  p.maxVelocity = sc.scalar(d, "maxVelocity");
   return p;
 }
 

@@ -1,7 +1,8 @@
 // constant/couplingProperties: what a coupled case asks of the coupling (OpenFOAM dictionary
 // syntax, read with mixflow's validating reader: unknown entries, unknown model names and
-// inconsistent combinations stop the run before it starts). Every entry and its default:
-// coupling/README.md ("Options") and docs/parameters.md ("Mixture scenes").
+// inconsistent combinations stop the run before it starts). Every top-level entry is declared
+// once in schema() (CouplingProperties.cpp), whose table docs/parameters.md shows; the models'
+// Coeffs blocks are read by the models.
 #pragma once
 
 #include <optional>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "Dictionary.h"
+#include "Schema.h"
 
 namespace mixflow::coupling {
 
@@ -60,6 +62,7 @@ struct CouplingProperties {
   // |U| above this (m/s) anywhere stops the run with the place and time (a diverging step).
   double maxVelocity = 100;
 
+  static const Schema& schema();
   static CouplingProperties read(const std::string& file);
 };
 

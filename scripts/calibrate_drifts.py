@@ -41,7 +41,7 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
 ESTIMATORS = ("wls", "median")
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
-# cfd/prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
+# prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
 # cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
 DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
 
@@ -244,7 +244,7 @@ def _num(v):
 
 
 def _solid_fraction(target, tree, res):
-    """alpha_s the bulk model uses (cfd/prepare/BulkModel.cpp): bulkProperties solidFraction, else
+    """alpha_s the bulk model uses (prepare/BulkModel.cpp): bulkProperties solidFraction, else
     the target's sceneProperties sample.solidFraction, else the source's."""
     if "solidFraction" in tree:
         return float(tree["solidFraction"]), "constant/bulkProperties solidFraction"

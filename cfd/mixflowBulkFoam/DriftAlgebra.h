@@ -24,7 +24,7 @@ struct LambdaCoefficients {
   double p = 1;                   // p_m = Lambda_p p_s
 };
 
-// alpha_s + lambda alpha_f below this is refused by the input check (cfd/prepare/BulkModel.cpp)
+// alpha_s + lambda alpha_f below this is refused by the input check (prepare/BulkModel.cpp)
 // and clipped here: Lambda_u = 1 / (alpha_s + lambda_u alpha_f) is infinite at zero.
 inline constexpr double kDriftDenominatorMin = 0.01;
 

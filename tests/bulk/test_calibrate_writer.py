@@ -79,7 +79,7 @@ def main():
     with open(bp) as f:
         check(f.read() == again, "a second identical calibration changes no byte")
 
-    # 2. Out of the bulk model's range (cfd/prepare/BulkModel.cpp): refused, file untouched.
+    # 2. Out of the bulk model's range (prepare/BulkModel.cpp): refused, file untouched.
     try:
         cd.write_target(target, fake_result(dict(NEW, lambda_p=-2.0)), "/x")
         check(False, "lambdaP -2 refused")

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "CfdDict.h"
+#include "CouplingProperties.h"
 #include "DemDict.h"
 #include "Dictionary.h"
 #include "MixflowProperties.h"
@@ -33,6 +34,7 @@ std::vector<Table> tables() {
       {"demDict", mixflow::DemDict::schema(), {"", "velocityProfile", "savage", "settle"}},
       {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
+      {"couplingProperties", mixflow::coupling::CouplingProperties::schema(), {""}},
   };
 }
 
