@@ -117,7 +117,8 @@ with open(os.path.join(work, "inputs", "0", "U")) as f:
 want = sorted(INPUTS + SAMPLE + ["log.mixflowDem"])
 got = files(outputs.copy_inputs(case, os.path.join(work, "kept"), keep=("dem", "log.mixflowDem")))
 check(got == want, "copy_inputs keep=(dem, log.mixflowDem): dem/'s sample without its resume state "
-      "and log, and that one log" + ("" if got == want else f" (wrong: {sorted(set(got) ^ set(want))})"))
+      "and log, and that one log"
+      + ("" if got == want else f" (wrong: {sorted(set(got) ^ set(want))})"))
 got = files(outputs.copy_inputs(case, os.path.join(work, "logs"), keep=("log.*",)))
 check(got == sorted(INPUTS + ["log.mixflowDem", "log.mixflowCoupled"]),
       "copy_inputs keep=(log.*,): a pattern keeps the top-level logs")
