@@ -153,9 +153,7 @@ def main():
 
     # The coupled scene: W+P-quick with case HB's liquid (or --liquid's).
     cpl = os.path.join(work, f"{a.liquid}+P-quick")
-    shutil.copytree(os.path.join(ROOT, "cases", "W+P-quick"), cpl,
-                    ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*", "0",
-                                                  "processor*", "[0-9]*"))
+    outputs.copy_inputs(os.path.join(ROOT, "cases", "W+P-quick"), cpl)
     sp = os.path.join(cpl, "constant", "sceneProperties")
     text = open(sp).read()
     hb = open(os.path.join(ROOT, "cases", a.liquid, "constant", "sceneProperties")).read()

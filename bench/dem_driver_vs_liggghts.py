@@ -20,6 +20,9 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.dont_write_bytecode = True
+from mixflow import outputs  # noqa: E402
 
 
 def mpi_prefix(ranks):
@@ -59,7 +62,7 @@ def main():
     exe = os.path.join(a.bin, "mixflowDem")
     work = tempfile.mkdtemp(prefix="mixflow-bench-")
     case = os.path.join(work, "case")
-    shutil.copytree(a.case, case, ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*"))
+    outputs.copy_inputs(a.case, case)
     ours, plain = [], []
     for _ in range(a.repeat):
         ours.append(timed(mpi_prefix(a.ranks) + [exe, "-case", "."] + (["-parallel"] if a.ranks > 1 else []), case))

@@ -37,9 +37,7 @@ def run_case(scene, ranks, work, tag, balance):
     """Fresh copy of cases/SCENE run with ./Allrun RANKS; (wall s, case dir)."""
     case = os.path.join(work, f"{scene}-np{ranks}-{tag}")
     shutil.rmtree(case, ignore_errors=True)
-    shutil.copytree(os.path.join(ROOT, "cases", scene), case,
-                    ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*",
-                                                  "processor*"))
+    outputs.copy_inputs(os.path.join(ROOT, "cases", scene), case)
     if balance > 0:
         foamdict.edit_file(os.path.join(case, "system", "demDict"),
                            {"balanceInterval": str(balance), "processors": '"* 1 1"'},

@@ -19,7 +19,6 @@ import argparse
 import csv
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -89,10 +88,7 @@ def main():
         case_b = os.path.join(a.work, "B", scene)
         shutil.rmtree(case_b, ignore_errors=True)
         os.makedirs(os.path.dirname(case_b), exist_ok=True)
-        shutil.copytree(case_a, case_b, ignore=lambda d, names: [
-            n for n in names if d == case_a and (n in ("postProcessing", "VTK", ".done") or
-                                                  n.startswith(("log.", "processor", "previous-run")) or
-                                                  (re.fullmatch(r"[0-9.eE+-]+", n) and n != "0"))])
+        outputs.copy_inputs(case_a, case_b)
         cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
                    "--target", case_b, "--flowing-factor", a.flowing_factor], fatal=False)
         out["scenes"][scene] = rec

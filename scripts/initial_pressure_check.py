@@ -75,9 +75,9 @@ def main():
     # The same prepared case, meshed and settled, from a hydrostatic start.
     hyd = os.path.join(a.work, "HB+P", "hydrostatic")
     shutil.rmtree(hyd, ignore_errors=True)
-    shutil.copytree(base, hyd, ignore=lambda d, names: [
-        n for n in names if d == base and (n in ("postProcessing", "VTK") or n.startswith(
-            ("log.mixflowCoupled", "processor")) or (re.fullmatch(r"[0-9.eE+-]+", n) and n != "0"))])
+    # The settled sample (dem/, without the solved run's resume state) and the logs of how the
+    # case was prepared come along; the mesh and 0/ are inputs.
+    outputs.copy_inputs(base, hyd, keep=("dem", "log.*"))
     c, col, dy = back_wall_column(hyd)
     alpha = fc.read_internal_field(os.path.join(hyd, "0", "alpha.liquid"), len(c))
     hs = sum(alpha[i] for i in col) * dy

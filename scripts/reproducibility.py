@@ -23,7 +23,6 @@ Writes OUT/summary.json and OUT/differences.csv.
 import argparse
 import csv
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -43,11 +42,7 @@ def make_case(work, scene, label, density_factor=1.0):
     """cases/W+P-quick's inputs with SCENE's liquid block in WORK/SCENE/LABEL."""
     d = os.path.join(work, scene, label)
     shutil.rmtree(d, ignore_errors=True)
-    src = os.path.join(ROOT, "cases", "W+P-quick")
-    shutil.copytree(src, d, ignore=lambda _d, names: [
-        n for n in names if n in ("dem", "postProcessing", "VTK") or
-        n.startswith(("log.", "processor", "previous-run")) or
-        (re.fullmatch(r"[0-9.eE+-]+", n) and n != "0")])
+    outputs.copy_inputs(os.path.join(ROOT, "cases", "W+P-quick"), d)
     sp = os.path.join(d, "constant", "sceneProperties")
     text = open(sp).read()
     liquid = open(os.path.join(ROOT, "cases", scene, "constant", "sceneProperties")).read()

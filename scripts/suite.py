@@ -49,8 +49,6 @@ FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
 CREATED_BY_SET = {"bulkProperties", "mixflowProperties"}
 CONTENTS = ("particles", "liquid", "mixture")
 TIER_KEYS = {"FoamFile", "description", "contentSpecific", "scenes"} | set(FILES) | set(CONTENTS)
-# Outputs of a run (not copied from cases/, removed from nothing).
-OUTPUT_NAMES = (outputs.POST, "VTK", "dem", outputs.DONE, outputs.FAILED)
 # Time series whose last row is the simulated time reached, by content (first found counts).
 SERIES = {"particles": [outputs.DEM_SERIES], "liquid": [outputs.LIQUID_SERIES],
           "mixture": [outputs.DEM_SERIES, outputs.LIQUID_SERIES]}
@@ -250,19 +248,10 @@ def hms(seconds):
     return f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d}"
 
 
-def _is_time_dir(name):
-    return re.fullmatch(r"[0-9.eE+-]+", name) is not None and name != "0"
-
-
 def make_copy(scene, run_dir, tier, texts, records, content):
     """cases/<scene> -> RUN_DIR (inputs only), tier set. An Allrun that sources ../../scripts/
     is pointed at this checkout's scripts/ (newer ones use $MIXFLOW_ROOT, which run_env sets)."""
-    src = os.path.join(CASES, scene)
-
-    def ignore(_d, names):
-        return [n for n in names if n in OUTPUT_NAMES or n.startswith(("log.", "previous-run."))
-                or n.startswith("processor") or _is_time_dir(n)]
-    shutil.copytree(src, run_dir, ignore=ignore)
+    outputs.copy_inputs(os.path.join(CASES, scene), run_dir)
     allrun = os.path.join(run_dir, "Allrun")
     if os.path.isfile(allrun):
         with open(allrun) as f:

@@ -55,6 +55,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
 import suite  # noqa: E402
+from mixflow import outputs  # noqa: E402
 from mixflow.outputs import nearest as at, read_series as series  # noqa: E402
 
 H = 0.6  # the paper's column height (m)
@@ -234,12 +235,7 @@ def observables(run_dir):
 def variant(base, dst, edits):
     """A copy of the finished run BASE with its settled sample and edited dictionaries."""
     shutil.rmtree(dst, ignore_errors=True)
-    keep = shutil.ignore_patterns("postProcessing", "VTK", "log.*", "processor*", ".done",
-                                  "previous-run.*", "coupled.resume.state", "restart_*")
-    shutil.copytree(base, dst, ignore=keep)
-    for d in os.listdir(dst):
-        if re.fullmatch(r"[0-9.eE+-]+", d) and d != "0":
-            shutil.rmtree(os.path.join(dst, d))
+    outputs.copy_inputs(base, dst, keep=("dem",))
     for fkey, tree in edits.items():
         path = os.path.join(dst, FILES[fkey])
         if not os.path.exists(path):

@@ -1,4 +1,5 @@
-"""Where a run writes its outputs inside its case directory, and the readers of its time series.
+"""Where a run writes its outputs inside its case directory, the readers of its time series, and
+copy_inputs: a case copied without the outputs of a run in it.
 
 Paths are relative to the case directory. Time series are CSV files with a header row; their
 first column is time_s. A value at a time is taken either interpolated linearly between the two
@@ -7,8 +8,11 @@ the one its committed numbers were made with.
 """
 
 import csv
+import fnmatch
 import math
 import os
+import re
+import shutil
 
 POST = "postProcessing"
 DEM_SERIES = "postProcessing/dem/timeSeries.csv"  # particle counts, granular front, energies
@@ -21,12 +25,47 @@ LIQUID_PROFILES = "postProcessing/liquid/profiles.csv"
 EXCHANGE = "postProcessing/coupling/exchange.csv"  # fluid-particle exchange, one row an exchange
 DONE, FAILED = ".done", ".failed"  # markers scripts/suite.py writes into a run directory
 SERIES = {"dem": DEM_SERIES, "liquid": LIQUID_SERIES, "exchange": EXCHANGE}
+# What a run writes at its case directory's top level (shell patterns), with the time directories
+# other than 0 (is_time_dir), and the state it leaves in dem/ to continue from (mixflowDem -resume:
+# resume.state and its restart_N.bin; mixflowCoupled -resume: coupled.resume.state and its
+# coupled_N.restart): what copy_inputs leaves behind.
+OUTPUT_NAMES = (POST, "VTK", "dem", DONE, FAILED, "log.*", "previous-run.*", "processor*",
+                "resume.state", "restart_*", "coupled.resume.state", "coupled_*.restart")
 
 # Column names the scripts read.
 TIME = "time_s"
 GRANULAR_FRONT = "front_x_m"  # DEM_SERIES
 LIQUID_FRONT = "front_bed_m"  # LIQUID_SERIES: largest x where the bed cell row holds alpha >= 0.5
 SECTION_FROUDE = "section_froude"  # LIQUID_SERIES: Fr at paper.SECTION_X (nan below minDepth)
+
+
+def is_time_dir(name):
+    """NAME reads as a number and is not 0: a time directory a run wrote (0 holds the inputs)."""
+    return re.fullmatch(r"[0-9.eE+-]+", name) is not None and name != "0"
+
+
+def _named(name, patterns):
+    return any(fnmatch.fnmatchcase(name, p) for p in patterns)
+
+
+def copy_inputs(src, dst, keep=()):
+    """SRC's inputs into DST (which must not exist): a run's outputs at SRC's top level
+    (OUTPUT_NAMES, time directories other than 0) are left behind, except those KEEP names (names
+    or shell patterns). A kept directory comes without the outputs inside it (its logs and resume
+    state at any depth): keep=("dem",) takes a settled sample along, not the state to continue that
+    run. Other directories (system/, constant/, 0/) are copied whole. Returns DST."""
+    top = os.path.normpath(os.fspath(src))
+
+    def ignore(d, names):
+        rel = os.path.relpath(d, top)
+        if rel == os.curdir:
+            return [n for n in names
+                    if (is_time_dir(n) or _named(n, OUTPUT_NAMES)) and not _named(n, keep)]
+        first = rel.split(os.sep)[0]
+        if _named(first, OUTPUT_NAMES) or is_time_dir(first):  # a kept output directory
+            return [n for n in names if _named(n, OUTPUT_NAMES)]
+        return []
+    return shutil.copytree(src, dst, ignore=ignore)
 
 
 def read_series(path, comments=False):

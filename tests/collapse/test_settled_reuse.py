@@ -21,6 +21,10 @@ import shutil
 import subprocess
 import sys
 
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import outputs  # noqa: E402
+
 dem, prepare, case, work = sys.argv[1:5]
 work = os.path.abspath(work)
 shutil.rmtree(work, ignore_errors=True)
@@ -36,8 +40,7 @@ def check(cond, what):
 def copy(name, edits=()):
     """CASE's inputs into WORK/name, with (file, regex, replacement) edits."""
     d = os.path.join(work, name)
-    shutil.copytree(case, d, ignore=lambda _d, n: [x for x in n if x.startswith("log.")
-                                                   or x in ("dem", "postProcessing", "VTK")])
+    outputs.copy_inputs(case, d)
     for rel, pattern, repl in edits:
         path = os.path.join(d, rel)
         text, n = re.subn(pattern, repl, open(path).read(), count=1, flags=re.M)

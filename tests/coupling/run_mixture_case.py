@@ -43,6 +43,7 @@ sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import foamcase as fc  # noqa: E402
 from mixflow import foamdict  # noqa: E402
+from mixflow import outputs  # noqa: E402
 
 
 def rows(path):
@@ -100,9 +101,7 @@ def main():
     case = os.path.join(a.workdir, "W+P-quick")
     shutil.rmtree(a.workdir, ignore_errors=True)
     os.makedirs(a.workdir)
-    shutil.copytree(os.path.join(a.root, "cases", "W+P-quick"), case,
-                    ignore=shutil.ignore_patterns("postProcessing", "VTK", "dem", "log.*",
-                                                  "processor*", "[0-9]*"))
+    outputs.copy_inputs(os.path.join(a.root, "cases", "W+P-quick"), case)
     fc.set_entry(os.path.join(case, "system/controlDict"), "endTime", repr(a.end))
     if a.liquid_case:
         # The liquid block (from "liquid" at a line start to its closing brace at a line start)

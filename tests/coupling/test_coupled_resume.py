@@ -30,6 +30,10 @@ import shutil
 import subprocess
 import sys
 
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from mixflow import outputs  # noqa: E402
+
 root, bindir, work = (os.path.abspath(a) for a in sys.argv[1:4])
 ranks = sys.argv[4] if len(sys.argv) > 4 else "1"  # every run and the resume on RANKS ranks
 shutil.rmtree(work, ignore_errors=True)
@@ -47,9 +51,7 @@ def check(cond, what):
 def make(name, end):
     d = os.path.join(work, name)
     # Inputs only: scripts/run.sh runs this case in place, leaving its outputs (and resume state).
-    shutil.copytree(os.path.join(root, "cases", "W+P-quick"), d, ignore=lambda _d, names: [
-        n for n in names if n in ("dem", "postProcessing", "VTK") or n.startswith(("log.", "processor"))
-        or (re.fullmatch(r"[0-9.eE+-]+", n) and n != "0")])
+    outputs.copy_inputs(os.path.join(root, "cases", "W+P-quick"), d)
     sp = os.path.join(d, "constant", "sceneProperties")
     text, hb = open(sp).read(), open(os.path.join(root, "cases", "HB+P", "constant",
                                                    "sceneProperties")).read()

@@ -11,7 +11,13 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      byte; an absent entry or a block stops with "cannot set KEY in PATH" (exit status 1);
   3. paper: the pure liquids' subcritical times are those of PAPER, '+' -> '&' in the paper's
      names; scripts/suite.py's DictError and TABLE1 are the package's (report.py catches
-     suite.DictError).
+     suite.DictError);
+  4. outputs.copy_inputs: of a case holding every kind of output a run leaves at its top level
+     (postProcessing, VTK, dem, .done, .failed, log.*, previous-run.*, processor*, time
+     directories other than 0, resume files) and inputs (Allrun, system/, constant/, 0/, 0.orig/,
+     an output-like name inside system/ and 0/), exactly the inputs are copied; keep=("dem",
+     "log.mixflowDem") takes dem/ along without its resume state and log, and that one log; an
+     existing DST stops the copy (FileExistsError).
 """
 import io
 import math
@@ -81,6 +87,48 @@ check(paper.PAPER_SUBCRITICAL == {"W": 1.2, "HB": 1.1, "B": 1.0}
 check(paper.PAPER_NAME["HB+P"] == "HB&P" and len(paper.TABLE1) == 14, "paper: Table 1's 14 scenes")
 check(suite.DictError is foamdict.DictError and suite.TABLE1 is paper.TABLE1
       and suite.read_dict is foamdict.read_dict, "suite.py uses the package's reader and scene list")
+
+# 4. outputs.copy_inputs
+case = os.path.join(work, "case")
+INPUTS = ["Allrun", "system/controlDict", "system/log.notes", "constant/sceneProperties",
+          "constant/polyMesh/points", "0/U", "0/dem/keep", "0.orig/U"]
+SAMPLE = ["dem/settled.state", "dem/settled.restart", "dem/screen.liggghts"]
+RUN_STATE = ["dem/resume.state", "dem/restart_0.bin", "dem/coupled.resume.state",
+             "dem/coupled_1.restart", "dem/log.liggghts"]
+OUTPUTS = ["postProcessing/dem/timeSeries.csv", "VTK/particles_0.vtk", ".done", ".failed",
+           "log.mixflowDem", "log.mixflowCoupled", "previous-run.20250101-120000/log.mixflowDem",
+           "processor0/0.1/U", "processor1/constant/polyMesh/points", "0.1/U", "1e-05/U", "10/U",
+           "coupled.resume.state", "restart_1.bin"]
+for rel in INPUTS + SAMPLE + RUN_STATE + OUTPUTS:
+    os.makedirs(os.path.dirname(os.path.join(case, rel)), exist_ok=True)
+    with open(os.path.join(case, rel), "w") as f:
+        f.write(rel + "\n")
+
+
+def files(d):
+    return sorted(os.path.relpath(os.path.join(r, n), d) for r, _, ns in os.walk(d) for n in ns)
+
+
+got = files(outputs.copy_inputs(case, os.path.join(work, "inputs")))
+check(got == sorted(INPUTS), "copy_inputs: the inputs, none of the outputs"
+      + ("" if got == sorted(INPUTS) else f" (copied {sorted(set(got) ^ set(INPUTS))} wrongly)"))
+with open(os.path.join(work, "inputs", "0", "U")) as f:
+    check(f.read() == "0/U\n", "copy_inputs: a file's content copied")
+want = sorted(INPUTS + SAMPLE + ["log.mixflowDem"])
+got = files(outputs.copy_inputs(case, os.path.join(work, "kept"), keep=("dem", "log.mixflowDem")))
+check(got == want, "copy_inputs keep=(dem, log.mixflowDem): dem/'s sample without its resume state "
+      "and log, and that one log"
+      + ("" if got == want else f" (wrong: {sorted(set(got) ^ set(want))})"))
+got = files(outputs.copy_inputs(case, os.path.join(work, "logs"), keep=("log.*",)))
+check(got == sorted(INPUTS + ["log.mixflowDem", "log.mixflowCoupled"]),
+      "copy_inputs keep=(log.*,): a pattern keeps the top-level logs")
+try:
+    outputs.copy_inputs(case, os.path.join(work, "inputs"))
+    raised = False
+except FileExistsError:
+    raised = True
+check(raised, "copy_inputs into an existing directory: FileExistsError")
+check(not hasattr(suite, "OUTPUT_NAMES"), "scripts/suite.py has no output list of its own")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)
