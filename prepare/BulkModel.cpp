@@ -1,22 +1,72 @@
 #include "BulkModel.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "Dictionary.h"
 #include "DriftAlgebra.h"
+#include "Schema.h"
 
 namespace mixflow::cfd {
 
 namespace {
 constexpr double kGravity = 9.81;
 
-// alpha_s + lambda alpha_f >= kDriftDenominatorMin: Lambda = 1 / (alpha_s + lambda alpha_f).
+Schema makeSchema() {
+  const BulkModel b{};
+  const std::string drift = "α_s + λ α_f ≥ 0.01";  // Λ = 1 / (α_s + λ α_f) stays finite
+  return Schema(
+      "constant/bulkProperties",
+      {
+          // 0 is the pore liquid alone (the model is then mixflowFoam's); 0.64 random close
+          // packing.
+          scalarParam("solidFraction", 0, Range::closed(0.0, 0.64), "",
+                      "α_s of the mixture, constant")
+              .shownDefault("sceneProperties `sample.solidFraction`"),
+          scalarParam("density", 0, Range::closed(10.0, 25000.0), "kg/m³",
+                      "ρ*, the mixture's constant density")
+              .shownDefault("α_s ρ_s + α_f ρ_f"),
+          dictParam("drifts", "the drift coefficients (kinematic pressures)"),
+          scalarParam("drifts.lambdaU", b.lambdaU, Range::closed(-1e3, 1e3), "", "u_f = λ_u u_s")
+              .alsoAllowed(drift),
+          scalarParam("drifts.lambdaW", b.lambdaW, Range::closed(-1e3, 1e3), "", "w_f = λ_w w_s")
+              .alsoAllowed(drift),
+          scalarParam("drifts.lambdaP", b.lambdaP, Range::closed(-1e3, 1e3), "", "p_f = λ_p p_s")
+              .alsoAllowed(drift),
+          textParam("drifts.source", b.driftSource,
+                    "what set the drifts (scripts/calibrate_drifts.py records the case and its "
+                    "file's sha256)"),
+          dictParam("solid", "the grains' Coulomb-viscoplastic rheology"),
+          scalarParam("solid.viscosity", b.solidViscosity, Range::nonNegative(), "m²/s",
+                      "ν_s; estimate ν_s ≈ Δμ d √p / I₀ for the project's grains, not calibrated")
+              .alsoAllowed("> 0 without a yield stress"),
+          scalarParam("solid.tanPhi", b.tanPhi, Range::closed(0.0, 5.0), "",
+                      "pressure coefficient of the yield stress (tan 25°), not calibrated"),
+          scalarParam("solid.cohesion", b.cohesion, Range::nonNegative(), "Pa", "τ_c"),
+          scalarParam("solid.regularisation", b.regularisation, Range::closed(0.0, 1e5), "s",
+                      "m_y of ν_se = ν_s + τ_ys (1 − e^{−m_y D})/D (D the strain rate's "
+                      "magnitude); at rest ν_s + m_y τ_ys"),
+          wordParam("solid.yieldPressure", b.yieldPressure, {"paper", "buoyancyReduced"},
+                    "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s"),
+          scalarParam("relaxation", b.relaxation, Range::openClosed(0.0, 1.0), "",
+                      "under-relaxation of the viscosity between PIMPLE correctors"),
+      });
+}
+
+// The declared drift, in the range that keeps alpha_s + lambda alpha_f >= kDriftDenominatorMin.
 double readDrift(const Dictionary& d, const std::string& key, double alphaS) {
-  // Above 1e3 a drift means a phase at rest against the other: the ratio is then meaningless.
-  const double lo = alphaS < 1 ? (bulk::kDriftDenominatorMin - alphaS) / (1 - alphaS) : -1e3;
-  return d.scalarOr(key, 1.0, Range::closed(lo, 1e3));
+  const Param& p = BulkModel::schema().param("drifts." + key);
+  const double lo = alphaS < 1
+                        ? std::max(p.range.lo, (bulk::kDriftDenominatorMin - alphaS) / (1 - alphaS))
+                        : p.range.lo;
+  return d.scalarOr(key, p.number, Range::closed(lo, p.range.hi));
 }
 }  // namespace
+
+const Schema& BulkModel::schema() {
+  static const Schema s = makeSchema();
+  return s;
+}
 
 double BulkModel::yieldPressureFactor(double fluidDensity) const {
   return yieldPressure == "paper" ? 1.0 : 1.0 - fluidDensity * lambdaP / solidDensity;
@@ -36,34 +86,34 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   const fs::path file = fs::path(caseDir) / "constant/bulkProperties";
   const Dictionary d =
       fs::exists(file) ? Dictionary::readFile(file.string()) : Dictionary::parse("", file.string());
-  d.allowOnly({"solidFraction", "density", "drifts", "solid", "relaxation"});
+  const Schema& sc = BulkModel::schema();
+  sc.allowOnly(d, "");
   BulkModel b;
   b.solidDensity = solidDensity;
-  // 0 is the pore liquid alone (the model is then mixflowFoam's); 0.64 random close packing.
-  b.solidFraction = d.scalarOr("solidFraction", sampleSolidFraction, Range::closed(0.0, 0.64));
+  b.solidFraction = d.has("solidFraction") ? sc.scalar(d, "solidFraction") : sampleSolidFraction;
 
   const Dictionary dr = d.subDictOrEmpty("drifts");
-  dr.allowOnly({"lambdaU", "lambdaW", "lambdaP", "source"});
+  sc.allowOnly(dr, "drifts");
   b.lambdaU = readDrift(dr, "lambdaU", b.solidFraction);
   b.lambdaW = readDrift(dr, "lambdaW", b.solidFraction);
   b.lambdaP = readDrift(dr, "lambdaP", b.solidFraction);
-  if (dr.has("source")) b.driftSource = dr.text("source");
+  b.driftSource = sc.text(dr, "drifts.source");
 
   const Dictionary s = d.subDictOrEmpty("solid");
-  s.allowOnly({"viscosity", "tanPhi", "cohesion", "regularisation", "yieldPressure"});
-  b.solidViscosity = s.scalarOr("viscosity", b.solidViscosity, Range::nonNegative());
-  b.tanPhi = s.scalarOr("tanPhi", b.tanPhi, Range::closed(0.0, 5.0));
-  b.cohesion = s.scalarOr("cohesion", b.cohesion, Range::nonNegative());
-  b.regularisation = s.scalarOr("regularisation", b.regularisation, Range::closed(0.0, 1e5));
-  b.yieldPressure = s.wordOr("yieldPressure", b.yieldPressure, {"paper", "buoyancyReduced"});
+  sc.allowOnly(s, "solid");
+  b.solidViscosity = sc.scalar(s, "solid.viscosity");
+  b.tanPhi = sc.scalar(s, "solid.tanPhi");
+  b.cohesion = sc.scalar(s, "solid.cohesion");
+  b.regularisation = sc.scalar(s, "solid.regularisation");
+  b.yieldPressure = sc.word(s, "solid.yieldPressure");
   if (b.solidViscosity == 0 && (b.tanPhi == 0 && b.cohesion == 0))
     s.fail("viscosity",
            "value 0 with no yield stress (tanPhi 0, cohesion 0) leaves the grains "
            "without any stress; allowed range (0, inf) then");
 
-  b.relaxation = d.scalarOr("relaxation", b.relaxation, Range::openClosed(0.0, 1.0));
+  b.relaxation = sc.scalar(d, "relaxation");
   const double rhoStar = b.solidFraction * solidDensity + (1 - b.solidFraction) * fluidDensity;
-  b.mixtureDensity = d.scalarOr("density", rhoStar, Range::closed(10.0, 25000.0));
+  b.mixtureDensity = d.has("density") ? sc.scalar(d, "density") : rhoStar;
   return b;
 }
 

@@ -1,14 +1,19 @@
 // The quasi two-phase bulk model of a mixture scene (docs/bulk_model.md), chosen by system/cfdDict
 // `mixtureModel bulk;` and set by constant/bulkProperties (optional: every entry has a default,
-// listed in docs/parameters.md "Bulk model"). SI input; writeFoamCase derives the kinematic
-// coefficients of mixflowBulkFoam's bulkMixture viscosity model from it.
+// declared once in schema(), whose table docs/parameters.md "Bulk model" shows). SI input;
+// writeFoamCase derives the kinematic coefficients of mixflowBulkFoam's bulkMixture viscosity model
+// from it.
 #pragma once
 
 #include <string>
 
+#include "Schema.h"
+
 namespace mixflow::cfd {
 
 struct BulkModel {
+  static const Schema& schema();
+
   double solidFraction = 0;  // alpha_s: bulkProperties solidFraction, else sample.solidFraction
   // Drifts u_f = lambdaU u_s, w_f = lambdaW w_s, p_f = lambdaP p_s (kinematic pressures).
   double lambdaU = 1, lambdaW = 1, lambdaP = 1;

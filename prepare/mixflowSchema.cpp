@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "BulkModel.h"
 #include "CfdDict.h"
 #include "CouplingProperties.h"
 #include "DemDict.h"
@@ -35,6 +36,7 @@ std::vector<Table> tables() {
       {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
       {"couplingProperties", mixflow::coupling::CouplingProperties::schema(), {""}},
+      {"bulkProperties", mixflow::cfd::BulkModel::schema(), {"", "drifts", "solid"}},
   };
 }
 
