@@ -26,11 +26,20 @@ closed-box    the newtonian mixture's column in a 0.3 x 0.15 m channel closed al
               The alpha predictor (MULESCorr's implicit upwind step) is solved to 1e-13 instead
               of prepare's 1e-10: its residual is the only non-conservative term (1e-10 drifts
               ~1e-8 over the run; measured with 1e-13: 1.2e-11 over 585 steps).
+rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) filling a 0.3 m channel
+              (end wall closed, top open to the air) at rest for 2 s, twice: the newtonian
+              mixture and cohesive-arrest's (tau_eff 50 Pa). Pass: max |U| over the whole domain
+              (air included) <= 1e-6 m/s at every write (0.5, 1, 1.5, 2 s; measured <= 6.6e-8 and
+              3.2e-7 at 0.5 s falling to 1e-8). The force balance is exact on faces, so only the
+              solver tolerance remains: p_rgh is solved to 1e-12 (cfdDict pressureTolerance); with
+              prepare's auto 1e-7 the Newtonian layer creeps (1e-4 m/s in the mixture, 5e-4 in
+              the air above, growing, and the surface smears into the air row).
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
 
 import argparse
+import math
 import os
 import re
 import shutil
@@ -135,6 +144,24 @@ def close_patches(case, names):
         edit(case, "system/fvSolution", [(r"^PIMPLE\s*\{", "PIMPLE\n{\n    pRefCell 0;\n"
                                           "    pRefValue 0;")])
 
+
+def flat_layer(case, depth):
+    """Replace prepare's column by a layer filling the channel to DEPTH (a cell face)."""
+    with open(os.path.join(case, "system/blockMeshDict")) as f:
+        nx, ny = (int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)", f.read()).groups())
+    with open(os.path.join(case, "constant/sceneProperties")) as f:
+        height = float(re.search(r"channel \{ length \S+; height ([^;]+);", f.read()).group(1))
+    rows = round(depth / height * ny)
+    values = "\n".join("1" if j < rows else "0" for j in range(ny) for i in range(nx))
+    path = os.path.join(case, "0/alpha.liquid")
+    with open(path) as f:
+        text = f.read()
+    text, n = re.subn(r"^internalField.*?^\)\s*;", f"internalField nonuniform List<scalar>\n"
+                      f"{nx * ny}\n(\n{values}\n)\n;", text, flags=re.M | re.S)
+    if n != 1:
+        lc.fc.fail(f"{path}: no internalField list")
+    with open(path, "w") as f:
+        f.write(text)
 
 def run_bulk(a, case):
     """blockMesh and mixflowBulkFoam on an edited case; returns the solver log."""
@@ -276,9 +303,43 @@ def closed_box(a, work):
                    "end wall)")
     return ok
 
+
+def cohesive_solid(tau_eff=50.0, mu_p=1.5, cap=1e4, alpha=0.6, rho_f=1000.0):
+    """The cohesive-arrest scenario's solid entry: the mixture a Bingham material of yield stress
+    tau_eff, plastic viscosity mu_p and viscosity at rest ~cap."""
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    # Kinematic stress alpha_s nu_se |D| times rho*: tau_eff = rho* alpha_s tau_c / rho_s.
+    tau_c = tau_eff * RHO_S / (rho * alpha)
+    nu_s = mu_p / (rho * alpha)
+    m_y = cap / tau_eff  # viscosity at rest rho* alpha_s (nu_s + m_y tau_c / rho_s) ~ cap
+    return (f"solid {{ viscosity {nu_s:.10g}; tanPhi 0; cohesion {tau_c:.10g}; "
+            f"regularisation {m_y:g}; }}\n")
+
+
+def rest(a, work):
+    """A flat mixture layer 0.05 m deep filling a 0.3 m channel (end wall closed, top open to the
+    air), at rest: it must stay at rest, Newtonian and cohesive."""
+    ok, bound, depth = True, 1e-6, 0.05
+    geometry = GEOMETRY.replace("length 0.6;", "length 0.3;")
+    for label, solid in (("newtonian", NEWTONIAN_SOLID), ("cohesive", cohesive_solid())):
+        # p_rgh to 1e-12: the auto 1e-7 (the Newtonian layer's, D < 20) leaves face-force residues
+        # that the light air turns into currents (1e-4 m/s in the mixture after 2 s, growing).
+        case = prepared(a, work, "bulk_rest_" + label, solid, 2.0, 0.5, geometry,
+                        CFD + "pressureTolerance 1e-12;\n")
+        close_patches(case, ["outlet"])
+        flat_layer(case, depth)
+        run_bulk(a, case)
+        times = field_times(case)
+        umax = [max(math.sqrt(sum(c * c for c in u)) for u in
+                    lc.fc.read_internal_field(os.path.join(case, t, "U"))) for t in times]
+        ok &= lc.check(max(umax) <= bound, f"{label} layer at rest: max |U| over the writes "
+                       f"{', '.join(times)} s: {', '.join(f'{u:.1e}' for u in umax)} m/s "
+                       f"(<= {bound:g})")
+    return ok
+
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
-             "closed-box": closed_box}
+             "closed-box": closed_box, "rest": rest}
 
 
 def main():
