@@ -34,6 +34,18 @@ rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) fillin
               solver tolerance remains: p_rgh is solved to 1e-12 (cfdDict pressureTolerance); with
               prepare's auto 1e-7 the Newtonian layer creeps (1e-4 m/s in the mixture, 5e-4 in
               the air above, growing, and the surface smears into the air row).
+incline       steady uniform flow down a 10 degree incline: the newtonian mixture (nu = alpha_s nu_s
+              + alpha_f nu_f = 1.2004e-3 m2/s) filling a layer h = 0.01 m deep on a no-slip bed,
+              periodic in x (cyclic, 4 cells along 0.01 m), a stress-free top (slip wall: the
+              domain is all mixture, no air; a free surface would need the air's own periodic
+              flow to converge too), g = 9.81 (sin, -cos) theta. p = p_rgh + rho* g.x is periodic,
+              so p_rgh carries the jump -rho* g_x L across the cycle (fixedJump): the solver is
+              unchanged. 8, 16, 32 cells across the depth, steps of viscous number 2, to 2.4 s
+              (29 h^2/nu). Exact u(y) = (g sin(theta) / nu) (h y - y^2 / 2), u_max 0.07096 m/s.
+              Pass: steady (u at the last two writes within 1e-8 u_max); max error on 32 cells
+              <= 5e-4 u_max (measured 2.441e-4); observed order of the L2 and max errors >= 1.8
+              between successive meshes (measured 2.000, 2.000); the errors equal the scheme's
+              exact discrete offset (g sin(theta)/nu) dy^2/8 = u_max / (4 n^2) within 1 %.
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
@@ -49,6 +61,7 @@ sys.dont_write_bytecode = True
 import run_liquid_cases as lc  # noqa: E402
 
 RHO_S = 2500.0
+G = 9.81
 BINGHAM = ("rheology Bingham; density 1000; yieldStress 17; plasticViscosity 1.5; "
            "viscosityCap 1e4; surfaceTension 0;")
 WATER = "rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0;"
@@ -337,9 +350,112 @@ def rest(a, work):
                        f"(<= {bound:g})")
     return ok
 
+
+def incline_case(a, work, n, h, length, nx, theta, end, rho, max_dt):
+    """The newtonian mixture filling a layer of depth h on a no-slip bed, periodic in x (cyclic
+    left/right), stress-free top (slip, closed), g tilted by theta; n cells across the depth."""
+    case = prepared(a, work, f"bulk_incline_{n}", NEWTONIAN_SOLID, end, end / 4)
+    g = (G * math.sin(theta), -G * math.cos(theta), 0.0)
+    dz = h / n
+    lc.fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict", f"""\
+scale 1;
+vertices ((0 0 0) ({length} 0 0) ({length} {h} 0) (0 {h} 0)
+          (0 0 {dz}) ({length} 0 {dz}) ({length} {h} {dz}) (0 {h} {dz}));
+blocks (hex (0 1 2 3 4 5 6 7) ({nx} {n} 1) simpleGrading (1 1 1));
+edges ();
+boundary
+(
+    left   {{ type cyclic; neighbourPatch right; faces ((0 4 7 3)); }}
+    right  {{ type cyclic; neighbourPatch left;  faces ((1 2 6 5)); }}
+    bottom {{ type wall;  faces ((0 1 5 4)); }}
+    top    {{ type patch; faces ((3 7 6 2)); }}
+    frontAndBack {{ type empty; faces ((0 3 2 1) (4 5 6 7)); }}
+);
+mergePatchPairs ();
+""")
+    lc.fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",
+                          "dimensions [0 1 -2 0 0 0 0];\nvalue (%.17g %.17g %.17g);\n" % g)
+
+    def field(name, cls, dims, internal, patches):
+        lc.fc.write_foam_file(case, "0/" + name, cls, name,
+                              f"dimensions {dims};\ninternalField uniform {internal};\n"
+                              "boundaryField\n{\n" + "".join(f"    {k} {{ {v} }}\n"
+                                                              for k, v in patches.items()) + "}\n")
+    cyc = {"left": "type cyclic;", "right": "type cyclic;", "frontAndBack": "type empty;"}
+    field("U", "volVectorField", "[0 1 -1 0 0 0 0]", "(0 0 0)",
+          dict(cyc, bottom="type noSlip;", top="type slip;"))
+    field("alpha.liquid", "volScalarField", "[0 0 0 0 0 0 0]", "1",
+          dict(cyc, bottom="type zeroGradient;", top="type zeroGradient;"))
+    # p = p_rgh + rho g.x is periodic, so p_rgh jumps by -rho g_x L across the cycle (owner
+    # side left: the value seen from the left face is the right cell's minus the jump).
+    jump = -rho * g[0] * length
+    field("p_rgh", "volScalarField", "[1 -1 -2 0 0 0 0]", "0",
+          dict(cyc, left=f"type fixedJump; patchType cyclic; jump uniform {jump:.17g}; "
+               "value uniform 0;", right="type fixedJump; patchType cyclic; value uniform 0;",
+               bottom="type fixedFluxPressure; value uniform 0;",
+               top="type fixedFluxPressure; value uniform 0;"))
+    edit(case, "system/fvSolution", [(r"^PIMPLE\s*\{", "PIMPLE\n{\n    pRefCell 0;\n"
+                                      "    pRefValue 0;")])
+    # No dam-break channel: the liquidObservables of prepare's controlDict do not apply.
+    lc.fc.write_foam_file(case, "system/controlDict", "dictionary", "controlDict", f"""\
+application mixflowBulkFoam;
+startFrom startTime; startTime 0; stopAt endTime; endTime {end};
+deltaT 1e-4; writeControl adjustable; writeInterval {end / 4}; purgeWrite 0;
+writeFormat ascii; writePrecision 17; writeCompression off; timeFormat general;
+timePrecision 8; runTimeModifiable no;
+adjustTimeStep yes; maxCo 0.5; maxAlphaCo 0.5; maxDeltaT {max_dt:.6g};
+""")
+    return case
+
+
+def incline(a, work):
+    """Steady uniform flow down an incline against u(y) = (g sin(theta) / nu) (h y - y^2 / 2)
+    on 8, 16, 32 cells across the depth."""
+    alpha, nu_s, nu_f, rho_f = 0.6, 2e-3, 1e-6, 1000.0
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    nu = alpha * nu_s + (1 - alpha) * nu_f
+    h, theta = 0.01, math.radians(10)
+    # The slowest mode decays as exp(-pi^2 nu t / (4 h^2)), but the solver's transient lags its
+    # implicit-Euler rate by ~15 steps (e-folding 1/lambda + 15 dt) and a viscous number
+    # nu dt / dy^2 of ~100 diverges (32 cells at 0.01 s): steps of viscous number 2, 29 h^2/nu.
+    end = 2.4
+    amp = G * math.sin(theta) / nu
+    umax = amp * h * h / 2
+    ok, errs = True, {}
+    for n in (8, 16, 32):
+        case = incline_case(a, work, n, h, h, 4, theta, end, rho, 2 * (h / n) ** 2 / nu)
+        run_bulk(a, case)
+        times = field_times(case)
+        last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
+        change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / umax
+        ok &= lc.check(change <= 1e-8, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
+                       f"{change:.1e} u_max (<= 1e-8)")
+        dy, err2, errmax, side = h / n, 0.0, 0.0, 0.0
+        for c, u in enumerate(last):
+            y = (c // 4 + 0.5) * dy
+            e = u[0] - amp * (h * y - y * y / 2)
+            err2 += e * e / len(last)
+            errmax = max(errmax, abs(e))
+            side = max(side, abs(u[1]))
+        errs[n] = (math.sqrt(err2) / umax, errmax / umax)
+        print(f"  n = {n}: L2 error {errs[n][0]:.3e} u_max, max {errs[n][1]:.3e} u_max "
+              f"(u_max {umax:.5f} m/s; max |v| {side:.1e} m/s)", flush=True)
+    ok &= lc.check(errs[32][1] <= 5e-4, f"max error on 32 cells {errs[32][1]:.3e} u_max (<= 5e-4)")
+    # The cell-centred scheme's steady solution is the exact one plus (g sin(theta)/nu) dy^2/8
+    # (the half-cell wall gradient), i.e. 1/(4 n^2) u_max in every cell.
+    dev = max(abs(errs[n][1] * 4 * n * n - 1) for n in errs)
+    ok &= lc.check(dev <= 0.01, f"errors against the scheme's 1/(4 n^2) u_max: within {dev:.1e} "
+                   "(<= 1 %)")
+    for c, f in ((8, 16), (16, 32)):
+        for k, name in enumerate(("L2", "max")):
+            order = math.log(errs[c][k] / errs[f][k], 2)
+            ok &= lc.check(order >= 1.8, f"{name} order {c} -> {f} cells: {order:.3f} (>= 1.8)")
+    return ok
+
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
-             "closed-box": closed_box, "rest": rest}
+             "closed-box": closed_box, "rest": rest,
+             "incline": incline}
 
 
 def main():
