@@ -17,11 +17,41 @@ cohesive-arrest  lambda = 1, alpha_s 0.6, tanPhi 0 and a cohesion tau_c: the mix
               the kinetic energy must never exceed the potential energy released (no restart).
 drifting      lambda_u = lambda_w = 1.3 on the newtonian mixture: the drift stress runs, the mixture
               volume balance stays <= 1e-6 and the front differs from lambda = 1's.
+closed-box    the newtonian mixture's column in a 0.3 x 0.15 m channel closed all round (outlet and
+              top made walls, p_rgh fixed by a reference cell), 2 s: it collapses, runs up the
+              end wall and sloshes. The mixture volume sum(alpha V) the solver logs every step
+              equals the initial fields' within 1e-10 relative; alpha_s is constant (reduced
+              model), so the solid volume is alpha_s times it: sum(alpha.solid V) of every write
+              equals alpha_s V(0) within 1e-10, and so does the pore liquid's (1 - alpha_s) V.
+              The alpha predictor (MULESCorr's implicit upwind step) is solved to 1e-13 instead
+              of prepare's 1e-10: its residual is the only non-conservative term (1e-10 drifts
+              ~1e-8 over the run; measured with 1e-13: 1.2e-11 over 585 steps).
+rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) filling a 0.3 m channel
+              (end wall closed, top open to the air) at rest for 2 s, twice: the newtonian
+              mixture and cohesive-arrest's (tau_eff 50 Pa). Pass: max |U| over the whole domain
+              (air included) <= 1e-6 m/s at every write (0.5, 1, 1.5, 2 s; measured <= 6.6e-8 and
+              3.2e-7 at 0.5 s falling to 1e-8). The force balance is exact on faces, so only the
+              solver tolerance remains: p_rgh is solved to 1e-12 (cfdDict pressureTolerance); with
+              prepare's auto 1e-7 the Newtonian layer creeps (1e-4 m/s in the mixture, 5e-4 in
+              the air above, growing, and the surface smears into the air row).
+incline       steady uniform flow down a 10 degree incline: the newtonian mixture (nu = alpha_s nu_s
+              + alpha_f nu_f = 1.2004e-3 m2/s) filling a layer h = 0.01 m deep on a no-slip bed,
+              periodic in x (cyclic, 4 cells along 0.01 m), a stress-free top (slip wall: the
+              domain is all mixture, no air; a free surface would need the air's own periodic
+              flow to converge too), g = 9.81 (sin, -cos) theta. p = p_rgh + rho* g.x is periodic,
+              so p_rgh carries the jump -rho* g_x L across the cycle (fixedJump): the solver is
+              unchanged. 8, 16, 32 cells across the depth, steps of viscous number 2, to 2.4 s
+              (29 h^2/nu). Exact u(y) = (g sin(theta) / nu) (h y - y^2 / 2), u_max 0.07096 m/s.
+              Pass: steady (u at the last two writes within 1e-8 u_max); max error on 32 cells
+              <= 5e-4 u_max (measured 2.441e-4); observed order of the L2 and max errors >= 1.8
+              between successive meshes (measured 2.000, 2.000); the errors equal the scheme's
+              exact discrete offset (g sin(theta)/nu) dy^2/8 = u_max / (4 n^2) within 1 %.
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
 
 import argparse
+import math
 import os
 import re
 import shutil
@@ -31,6 +61,7 @@ sys.dont_write_bytecode = True
 import run_liquid_cases as lc  # noqa: E402
 
 RHO_S = 2500.0
+G = 9.81
 BINGHAM = ("rheology Bingham; density 1000; yieldStress 17; plasticViscosity 1.5; "
            "viscosityCap 1e4; surfaceTension 0;")
 WATER = "rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0;"
@@ -75,6 +106,84 @@ def compare(bulk, ref, label, tol=1e-6):
                    f"({worst[1]} at t = {worst[2]:g} s; <= {tol:g}); front at the end "
                    f"{bulk[-1]['front_bed_m']:.5f} m against {ref[-1]['front_bed_m']:.5f} m")
     return ok
+
+
+# ------------------------------------------------------- cases edited after mixflowPrepare
+NEWTONIAN_SOLID = "solid { viscosity 2e-3; tanPhi 0; cohesion 0; }\n"
+
+
+def prepared(a, work, name, bulk_props, end, write_interval, scene_geometry=GEOMETRY, cfd=CFD):
+    """A bulk case through mixflowPrepare (no mesh yet), to be edited: its transportProperties
+    (the bulkMixture coefficients), fvSchemes and fvSolution are the ones a user gets."""
+    case = os.path.join(work, name)
+    lc.write_case(case, "content mixture;\n" + scene_geometry + PARTICLES +
+                  f"liquid {{ {WATER} }}\n", cfd + "mixtureModel bulk;\n", end, write_interval)
+    hdr = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
+    with open(os.path.join(case, "system/demDict"), "w") as f:
+        f.write(hdr % "demDict")
+    with open(os.path.join(case, "constant/bulkProperties"), "w") as f:
+        f.write(hdr % "bulkProperties" + bulk_props)
+    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    # Fields at full precision: the checks below go to 1e-10.
+    with open(os.path.join(case, "system/controlDict"), "a") as f:
+        f.write("writePrecision 17;\n")
+    return case
+
+
+def edit(case, rel, subs):
+    """Regex substitutions in a case file; each must match."""
+    path = os.path.join(case, rel)
+    with open(path) as f:
+        text = f.read()
+    for pat, rep in subs:
+        text, n = re.subn(pat, rep, text, flags=re.M)
+        if n == 0:
+            lc.fc.fail(f"{path}: no match for {pat!r}")
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def close_patches(case, names):
+    """Turn the open patches NAMES (outlet, atmosphere) into no-slip walls; the names stay, so
+    liquidObservables still finds them (zero flux through a wall)."""
+    for n in names:
+        edit(case, "system/blockMeshDict", [(rf"^(\s*{n}\s*\{{\s*type )patch;", r"\1wall;")])
+        edit(case, "0/U", [(rf"^(\s*{n}\s*)\{{.*\}}", r"\1{ type noSlip; }")])
+        edit(case, "0/p_rgh", [(rf"^(\s*{n}\s*)\{{.*\}}",
+                                r"\1{ type fixedFluxPressure; value uniform 0; }")])
+        edit(case, "0/alpha.liquid", [(rf"^(\s*{n}\s*)\{{.*\}}", r"\1{ type zeroGradient; }")])
+    if "atmosphere" in names:
+        # No open boundary left: p_rgh is fixed by a reference cell.
+        edit(case, "system/fvSolution", [(r"^PIMPLE\s*\{", "PIMPLE\n{\n    pRefCell 0;\n"
+                                          "    pRefValue 0;")])
+
+
+def flat_layer(case, depth):
+    """Replace prepare's column by a layer filling the channel to DEPTH (a cell face)."""
+    with open(os.path.join(case, "system/blockMeshDict")) as f:
+        nx, ny = (int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)", f.read()).groups())
+    with open(os.path.join(case, "constant/sceneProperties")) as f:
+        height = float(re.search(r"channel \{ length \S+; height ([^;]+);", f.read()).group(1))
+    rows = round(depth / height * ny)
+    values = "\n".join("1" if j < rows else "0" for j in range(ny) for i in range(nx))
+    path = os.path.join(case, "0/alpha.liquid")
+    with open(path) as f:
+        text = f.read()
+    text, n = re.subn(r"^internalField.*?^\)\s*;", f"internalField nonuniform List<scalar>\n"
+                      f"{nx * ny}\n(\n{values}\n)\n;", text, flags=re.M | re.S)
+    if n != 1:
+        lc.fc.fail(f"{path}: no internalField list")
+    with open(path, "w") as f:
+        f.write(text)
+
+def run_bulk(a, case):
+    """blockMesh and mixflowBulkFoam on an edited case; returns the solver log."""
+    lc.fc.run([a.blockmesh], case, "log.blockMesh")
+    return lc.fc.run([a.bulk_solver], case, "log.mixflowBulkFoam")
+
+
+def field_times(case):
+    return [name for t, name in lc.fc.time_dirs(case) if t > 0]
 
 
 def liquid_limit(a, work):
@@ -173,8 +282,180 @@ def drifting(a, work):
     return ok
 
 
+def closed_box(a, work):
+    """The newtonian scenario's column collapsing and sloshing in a 0.3 m channel closed all
+    round (outlet and top made walls): the mixture volume sum(alpha V) of every step equals the first,
+    and the solid volume sum(alpha.solid V) of every write is alpha_s times it."""
+    alpha_s, cell = 0.6, 0.005
+    box = 0.3  # channel length: the viscous mixture reaches the end wall within 1 s
+    geometry = GEOMETRY.replace("length 0.6;", f"length {box};")
+    case = prepared(a, work, "bulk_closed_box", NEWTONIAN_SOLID, 2.0, 0.25, geometry)
+    close_patches(case, ["outlet", "atmosphere"])
+    # The implicit upwind alpha predictor (MULESCorr) is the one step not conservative by
+    # construction: its linear-solver residual is the drift (prepare's 1e-10 gives ~1e-8 here).
+    edit(case, "system/fvSolution", [(r'("alpha\.liquid\.\*"\s*\{[^}]*tolerance\s+)1e-10;',
+                                      r"\g<1>1e-13;")])
+    log = run_bulk(a, case)
+    vols = [float(v) for v in re.findall(r"^Liquid volume sum\(voidfraction\*alpha\*V\) = (\S+)",
+                                         log, re.M)]
+    ok = lc.check(len(vols) > 100, f"{len(vols)} steps logged the mixture volume")
+    s = lc.read_series(case)
+    v0 = s[0]["volume_domain_m3"]  # the initial fields, 12 digits
+    drift = max(abs(v - v0) / v0 for v in vols)
+    ok &= lc.check(drift <= 1e-10, f"mixture volume |V(t) - V(0)| / V(0) max {drift:.2e} over "
+                   f"{len(vols)} steps to t = {s[-1]['time_s']:g} s (<= 1e-10)")
+    worst = 0.0
+    for t in field_times(case):
+        vs = sum(lc.fc.read_internal_field(os.path.join(case, t, "alpha.solid"))) * cell * cell * 0.1
+        worst = max(worst, abs(vs - alpha_s * v0) / (alpha_s * v0))
+    ok &= lc.check(worst <= 1e-10, f"solid volume sum(alpha.solid V) = alpha_s V(0) at the "
+                   f"{len(field_times(case))} writes: max relative deviation {worst:.2e} (<= 1e-10)")
+    # The collapse reaches the end wall and runs up it: not a trivial run.
+    xmax = max(r["front_bed_m"] for r in s)
+    ok &= lc.check(xmax >= 0.95 * box, f"front reached {xmax:.3f} m (>= {0.95 * box:.3f} m: the "
+                   "end wall)")
+    return ok
+
+
+def cohesive_solid(tau_eff=50.0, mu_p=1.5, cap=1e4, alpha=0.6, rho_f=1000.0):
+    """The cohesive-arrest scenario's solid entry: the mixture a Bingham material of yield stress
+    tau_eff, plastic viscosity mu_p and viscosity at rest ~cap."""
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    # Kinematic stress alpha_s nu_se |D| times rho*: tau_eff = rho* alpha_s tau_c / rho_s.
+    tau_c = tau_eff * RHO_S / (rho * alpha)
+    nu_s = mu_p / (rho * alpha)
+    m_y = cap / tau_eff  # viscosity at rest rho* alpha_s (nu_s + m_y tau_c / rho_s) ~ cap
+    return (f"solid {{ viscosity {nu_s:.10g}; tanPhi 0; cohesion {tau_c:.10g}; "
+            f"regularisation {m_y:g}; }}\n")
+
+
+def rest(a, work):
+    """A flat mixture layer 0.05 m deep filling a 0.3 m channel (end wall closed, top open to the
+    air), at rest: it must stay at rest, Newtonian and cohesive."""
+    ok, bound, depth = True, 1e-6, 0.05
+    geometry = GEOMETRY.replace("length 0.6;", "length 0.3;")
+    for label, solid in (("newtonian", NEWTONIAN_SOLID), ("cohesive", cohesive_solid())):
+        # p_rgh to 1e-12: the auto 1e-7 (the Newtonian layer's, D < 20) leaves face-force residues
+        # that the light air turns into currents (1e-4 m/s in the mixture after 2 s, growing).
+        case = prepared(a, work, "bulk_rest_" + label, solid, 2.0, 0.5, geometry,
+                        CFD + "pressureTolerance 1e-12;\n")
+        close_patches(case, ["outlet"])
+        flat_layer(case, depth)
+        run_bulk(a, case)
+        times = field_times(case)
+        umax = [max(math.sqrt(sum(c * c for c in u)) for u in
+                    lc.fc.read_internal_field(os.path.join(case, t, "U"))) for t in times]
+        ok &= lc.check(max(umax) <= bound, f"{label} layer at rest: max |U| over the writes "
+                       f"{', '.join(times)} s: {', '.join(f'{u:.1e}' for u in umax)} m/s "
+                       f"(<= {bound:g})")
+    return ok
+
+
+def incline_case(a, work, n, h, length, nx, theta, end, rho, max_dt):
+    """The newtonian mixture filling a layer of depth h on a no-slip bed, periodic in x (cyclic
+    left/right), stress-free top (slip, closed), g tilted by theta; n cells across the depth."""
+    case = prepared(a, work, f"bulk_incline_{n}", NEWTONIAN_SOLID, end, end / 4)
+    g = (G * math.sin(theta), -G * math.cos(theta), 0.0)
+    dz = h / n
+    lc.fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict", f"""\
+scale 1;
+vertices ((0 0 0) ({length} 0 0) ({length} {h} 0) (0 {h} 0)
+          (0 0 {dz}) ({length} 0 {dz}) ({length} {h} {dz}) (0 {h} {dz}));
+blocks (hex (0 1 2 3 4 5 6 7) ({nx} {n} 1) simpleGrading (1 1 1));
+edges ();
+boundary
+(
+    left   {{ type cyclic; neighbourPatch right; faces ((0 4 7 3)); }}
+    right  {{ type cyclic; neighbourPatch left;  faces ((1 2 6 5)); }}
+    bottom {{ type wall;  faces ((0 1 5 4)); }}
+    top    {{ type patch; faces ((3 7 6 2)); }}
+    frontAndBack {{ type empty; faces ((0 3 2 1) (4 5 6 7)); }}
+);
+mergePatchPairs ();
+""")
+    lc.fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",
+                          "dimensions [0 1 -2 0 0 0 0];\nvalue (%.17g %.17g %.17g);\n" % g)
+
+    def field(name, cls, dims, internal, patches):
+        lc.fc.write_foam_file(case, "0/" + name, cls, name,
+                              f"dimensions {dims};\ninternalField uniform {internal};\n"
+                              "boundaryField\n{\n" + "".join(f"    {k} {{ {v} }}\n"
+                                                              for k, v in patches.items()) + "}\n")
+    cyc = {"left": "type cyclic;", "right": "type cyclic;", "frontAndBack": "type empty;"}
+    field("U", "volVectorField", "[0 1 -1 0 0 0 0]", "(0 0 0)",
+          dict(cyc, bottom="type noSlip;", top="type slip;"))
+    field("alpha.liquid", "volScalarField", "[0 0 0 0 0 0 0]", "1",
+          dict(cyc, bottom="type zeroGradient;", top="type zeroGradient;"))
+    # p = p_rgh + rho g.x is periodic, so p_rgh jumps by -rho g_x L across the cycle (owner
+    # side left: the value seen from the left face is the right cell's minus the jump).
+    jump = -rho * g[0] * length
+    field("p_rgh", "volScalarField", "[1 -1 -2 0 0 0 0]", "0",
+          dict(cyc, left=f"type fixedJump; patchType cyclic; jump uniform {jump:.17g}; "
+               "value uniform 0;", right="type fixedJump; patchType cyclic; value uniform 0;",
+               bottom="type fixedFluxPressure; value uniform 0;",
+               top="type fixedFluxPressure; value uniform 0;"))
+    edit(case, "system/fvSolution", [(r"^PIMPLE\s*\{", "PIMPLE\n{\n    pRefCell 0;\n"
+                                      "    pRefValue 0;")])
+    # No dam-break channel: the liquidObservables of prepare's controlDict do not apply.
+    lc.fc.write_foam_file(case, "system/controlDict", "dictionary", "controlDict", f"""\
+application mixflowBulkFoam;
+startFrom startTime; startTime 0; stopAt endTime; endTime {end};
+deltaT 1e-4; writeControl adjustable; writeInterval {end / 4}; purgeWrite 0;
+writeFormat ascii; writePrecision 17; writeCompression off; timeFormat general;
+timePrecision 8; runTimeModifiable no;
+adjustTimeStep yes; maxCo 0.5; maxAlphaCo 0.5; maxDeltaT {max_dt:.6g};
+""")
+    return case
+
+
+def incline(a, work):
+    """Steady uniform flow down an incline against u(y) = (g sin(theta) / nu) (h y - y^2 / 2)
+    on 8, 16, 32 cells across the depth."""
+    alpha, nu_s, nu_f, rho_f = 0.6, 2e-3, 1e-6, 1000.0
+    rho = alpha * RHO_S + (1 - alpha) * rho_f
+    nu = alpha * nu_s + (1 - alpha) * nu_f
+    h, theta = 0.01, math.radians(10)
+    # The slowest mode decays as exp(-pi^2 nu t / (4 h^2)), but the solver's transient lags its
+    # implicit-Euler rate by ~15 steps (e-folding 1/lambda + 15 dt) and a viscous number
+    # nu dt / dy^2 of ~100 diverges (32 cells at 0.01 s): steps of viscous number 2, 29 h^2/nu.
+    end = 2.4
+    amp = G * math.sin(theta) / nu
+    umax = amp * h * h / 2
+    ok, errs = True, {}
+    for n in (8, 16, 32):
+        case = incline_case(a, work, n, h, h, 4, theta, end, rho, 2 * (h / n) ** 2 / nu)
+        run_bulk(a, case)
+        times = field_times(case)
+        last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
+        change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / umax
+        ok &= lc.check(change <= 1e-8, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
+                       f"{change:.1e} u_max (<= 1e-8)")
+        dy, err2, errmax, side = h / n, 0.0, 0.0, 0.0
+        for c, u in enumerate(last):
+            y = (c // 4 + 0.5) * dy
+            e = u[0] - amp * (h * y - y * y / 2)
+            err2 += e * e / len(last)
+            errmax = max(errmax, abs(e))
+            side = max(side, abs(u[1]))
+        errs[n] = (math.sqrt(err2) / umax, errmax / umax)
+        print(f"  n = {n}: L2 error {errs[n][0]:.3e} u_max, max {errs[n][1]:.3e} u_max "
+              f"(u_max {umax:.5f} m/s; max |v| {side:.1e} m/s)", flush=True)
+    ok &= lc.check(errs[32][1] <= 5e-4, f"max error on 32 cells {errs[32][1]:.3e} u_max (<= 5e-4)")
+    # The cell-centred scheme's steady solution is the exact one plus (g sin(theta)/nu) dy^2/8
+    # (the half-cell wall gradient), i.e. 1/(4 n^2) u_max in every cell.
+    dev = max(abs(errs[n][1] * 4 * n * n - 1) for n in errs)
+    ok &= lc.check(dev <= 0.01, f"errors against the scheme's 1/(4 n^2) u_max: within {dev:.1e} "
+                   "(<= 1 %)")
+    for c, f in ((8, 16), (16, 32)):
+        for k, name in enumerate(("L2", "max")):
+            order = math.log(errs[c][k] / errs[f][k], 2)
+            ok &= lc.check(order >= 1.8, f"{name} order {c} -> {f} cells: {order:.3f} (>= 1.8)")
+    return ok
+
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
-             "cohesive-arrest": cohesive_arrest, "bad-input": bad_input}
+             "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
+             "closed-box": closed_box, "rest": rest,
+             "incline": incline}
 
 
 def main():
