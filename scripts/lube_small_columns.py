@@ -23,9 +23,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from mixflow import outputs  # noqa: E402
-from runout_fit import fit_power_law  # noqa: E402
+from mixflow.runout import fit_power_law  # noqa: E402
 COLUMN = os.path.join(ROOT, "tests", "collapse", "column")
 D = 0.012
 

@@ -3,7 +3,7 @@ suite work directory, and summary.json with the paper's numbers beside ours.
 
     python3 scripts/mixture_results.py [--work runs/reference] [--out results/mixtures]
 
-Rules (the same as scripts/report.py, whose readers it uses):
+Rules (the same as scripts/report.py's, from mixflow.observables):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
     the first time after t0 from which Fr < 1 holds for HOLD_S (python/mixflow/froude.py), minus t0.
     Coarse mixture meshes thin the front below alpha = 0.5 before the section; then the arrival is
@@ -22,12 +22,12 @@ import numpy as np
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-import report  # noqa: E402
+from mixflow import observables as obs  # noqa: E402
 import suite  # noqa: E402
 from mixflow.froude import first_time, subcritical_from  # noqa: E402
-from mixflow.paper import PAPER, PAPER_NAME, SECTION_X  # noqa: E402
+from mixflow.paper import MIXTURES, PAPER, PAPER_NAME, SECTION_X  # noqa: E402
 
-PAPER_SUBCRITICAL = {PAPER_NAME[n]: PAPER["subcritical"][n] for n in report.MIXTURES}
+PAPER_SUBCRITICAL = {PAPER_NAME[n]: PAPER["subcritical"][n] for n in MIXTURES}
 PAPER_SAVAGE_B = list(PAPER["savage_interval_BP"])
 
 
@@ -56,7 +56,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    scenes = {n: report.Scene(work, n) for n in report.MIXTURES}
+    scenes = {n: obs.Scene(work, n) for n in MIXTURES}
     done = {n: s for n, s in scenes.items() if s.done}
     summary = {"command": f"python3 scripts/mixture_results.py --work {a.work} --out {a.out}",
                "work": work, "scenes": {}, "subcritical_after_arrival_s": {},
@@ -66,29 +66,29 @@ def main():
                          "savage_order": "B&P > P ~ HB&P > W&P"}}
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
     for n, s in done.items():
-        p = report.PAPER_NAME[n]
+        p = PAPER_NAME[n]
         t0, sub, rule = arrival_and_subcritical(s)
         summary["subcritical_after_arrival_s"][p] = sub
         summary["subcritical_arrival_rule"][p] = rule
-        t, x = report.granular_front(s)
-        tl, xl = report.liquid_front(s)
+        t, x = obs.granular_front(s)
+        tl, xl = obs.liquid_front(s)
         ax[0].plot(tl, xl, label=f"{p} liquid")
         ax[0].plot(t, x, "--", label=f"{p} granular")
-        tf = report.col(s.liquid, "time_s")
-        ax[1].plot(tf - (t0 or 0), report.col(s.liquid, "section_froude"), label=p)
-        sv = report.savage(s)
-        iv = report.col(s.dem, "savage_iverson")
+        tf = obs.col(s.liquid, "time_s")
+        ax[1].plot(tf - (t0 or 0), obs.col(s.liquid, "section_froude"), label=p)
+        sv = obs.savage(s)
+        iv = obs.col(s.dem, "savage_iverson")
         if sv:
             ax[2].plot(sv[0], sv[1], label=f"{p} (Eq. 16, d)")
             ax[2].plot(sv[0], iv, ":", label=f"{p} (Iverson, d²/h)")
             n_ok = np.nan_to_num(sv[1], nan=0.0)
-            summary["savage_collisional_interval_s"][p] = report.collision_interval(sv[0], n_ok)
+            summary["savage_collisional_interval_s"][p] = obs.collision_interval(sv[0], n_ok)
         summary["scenes"][p] = {
             "tier": s.tier, "case": n, "width_m": s.width,
             "simulated_to_s": s.t_end(), "liquid_arrival_at_1.38m_s": t0,
             "granular_front_end_m": float(x[-1]), "liquid_front_end_m": float(xl[-1]),
             "liquid_outflow_m3": s.liquid[-1]["volume_outlet_m3"],
-            "liquid_volume_balance_worst": float(np.nanmax(np.abs(report.col(s.liquid, "volume_balance")))),
+            "liquid_volume_balance_worst": float(np.nanmax(np.abs(obs.col(s.liquid, "volume_balance")))),
         }
     ax[0].set(xlabel="t (s)", ylabel="front x (m)", title="liquid and granular fronts")
     ax[1].axhline(1, color="k", lw=0.8)
@@ -99,11 +99,11 @@ def main():
         a_.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "mixtures.png"), dpi=110)
-    summary["missing"] = [report.PAPER_NAME[n] for n in scenes if n not in done]
+    summary["missing"] = [PAPER_NAME[n] for n in scenes if n not in done]
     with open(os.path.join(out, "summary.json"), "w") as f:
-        json.dump(report.clean(summary), f, indent=2)
+        json.dump(obs.clean(summary), f, indent=2)
         f.write("\n")
-    print(json.dumps(report.clean({k: summary[k] for k in
+    print(json.dumps(obs.clean({k: summary[k] for k in
                                    ("subcritical_after_arrival_s", "savage_collisional_interval_s",
                                     "missing")})))
 

@@ -15,7 +15,6 @@ figure or number that the finished scenes do not allow says so instead of stoppi
 
 import argparse
 import json
-import math
 import os
 import sys
 import traceback
@@ -25,271 +24,18 @@ import numpy as np
 sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import suite  # noqa: E402  (scene list, dictionary reader)
-from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival  # noqa: E402
-from mixflow.outputs import interpolated as at, read_rows  # noqa: E402
-from mixflow.paper import D_P, G, L_SLUMP, PAPER, PAPER_NAME, SECTION_X, T_SLUMP  # noqa: E402
-from runout_fit import fit_power_law, thickness_front  # noqa: E402
+from mixflow.froude import HOLD_S  # noqa: E402
+from mixflow.observables import (  # noqa: E402
+    clean, col, fmt, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
+    granular_front, subcritical, subcritical_volume_depth, back_wall_key,
+    back_wall, particle_energies, energy_excess, e_pd, e_fc, savage,
+    collision_interval, stage_change, outflow_start, runout_law)
+from mixflow.paper import (DRY_SERIES, L_SLUMP, LIQUIDS, MIXTURES, PAPER,  # noqa: E402,F401
+                           PAPER_NAME, SECTION_X, T_SLUMP)
 
-MIXTURES = ["W+P", "HB+P", "B+P"]
-LIQUIDS = ["W", "HB", "B"]
-DRY_SERIES = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V"]
 STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),
          "W+P": ("C0", "--"), "HB+P": ("C1", "--"), "B+P": ("C2", "--"),
          "HB-I": ("C1", "-"), "B-I": ("C2", "-")}
-
-
-# --------------------------------------------------------------------------------------------
-# Reading the outputs
-
-def col(rows, key):
-    return np.array([r.get(key, np.nan) for r in rows], dtype=float)
-
-
-class Scene:
-    """One scene's outputs in the work directory (attributes None where absent)."""
-
-    def __init__(self, work, name):
-        self.name, self.paper_name = name, PAPER_NAME.get(name, name)
-        self.dir = os.path.join(work, name)
-        self.done = os.path.isfile(os.path.join(self.dir, ".done"))
-        self.exists = os.path.isdir(self.dir)
-        self.failed = os.path.isfile(os.path.join(self.dir, ".failed"))
-        self.tier = self.content = None
-        self.dem = self.liquid = self.exchange = self.summary = None
-        self.deposit = self.velocity = self.profiles = None
-        self.width = self.H = self.L = None
-        if not self.done:
-            return
-        tier_file = os.path.join(self.dir, "system", "tier")
-        if os.path.isfile(tier_file):
-            rec = suite.read_dict(tier_file)
-            self.tier, self.content = rec.get("tier"), rec.get("content")
-        sp = suite.read_dict(os.path.join(self.dir, "constant", "sceneProperties"))
-        self.content = self.content or sp.get("content")
-        self.L, self.H, self.width = (float(sp["sample"][k]) for k in ("length", "height", "width"))
-        pp = os.path.join(self.dir, "postProcessing")
-        opt = {"dem": "dem/timeSeries.csv", "liquid": "liquid/timeSeries.csv",
-               "exchange": "coupling/exchange.csv", "deposit": "dem/depositProfile.csv",
-               "velocity": "dem/velocityProfile.csv", "profiles": "liquid/profiles.csv"}
-        for attr, rel in opt.items():
-            path = os.path.join(pp, rel)
-            if os.path.isfile(path):
-                setattr(self, attr, read_rows(path))
-        path = os.path.join(pp, "dem", "summary.json")
-        if os.path.isfile(path):
-            with open(path) as f:
-                self.summary = json.load(f)
-            self.tier = self.tier or self.summary.get("tier")
-
-    def t_end(self):
-        for rows in (self.liquid, self.dem):
-            if rows:
-                return rows[-1]["time_s"]
-        return None
-
-
-def vtk_series(case_dir):
-    """[(time, path)] of the particle snapshots (VTK/particles.vtk.series)."""
-    path = os.path.join(case_dir, "VTK", "particles.vtk.series")
-    if not os.path.isfile(path):
-        return []
-    with open(path) as f:
-        files = json.load(f)["files"]
-    return [(float(e["time"]), os.path.join(case_dir, "VTK", e["name"])) for e in files]
-
-
-def vtk_points(path):
-    """Particle centres of a legacy ASCII VTK file written by LIGGGHTS: array (n, 3)."""
-    with open(path) as f:
-        for line in f:
-            if line.startswith("POINTS"):
-                n = int(line.split()[1])
-                break
-        else:
-            return np.zeros((0, 3))
-        vals = []
-        while len(vals) < 3 * n:
-            vals += f.readline().split()
-    return np.array(vals[:3 * n], dtype=float).reshape(n, 3)
-
-
-def granular_surface(points, x_max, d=D_P):
-    """Top of the granular layer per bin of one diameter: max y + d/2 of the bin's grains (nan
-    where a bin holds fewer than 2 grains, so a lone bouncing grain is no surface)."""
-    edges = np.arange(0.0, x_max + d, d)
-    h = np.full(len(edges) - 1, np.nan)
-    idx = np.digitize(points[:, 0], edges) - 1
-    for i in range(len(h)):
-        ys = points[idx == i, 1]
-        if len(ys) >= 2:
-            h[i] = ys.max() + d / 2
-    return 0.5 * (edges[1:] + edges[:-1]), h
-
-
-# --------------------------------------------------------------------------------------------
-# Derived numbers (each returns None where the outputs do not allow it)
-
-def liquid_front(s):
-    return (col(s.liquid, "time_s"), col(s.liquid, "front_bed_m")) if s.liquid else None
-
-
-def granular_front(s):
-    return (col(s.dem, "time_s"), col(s.dem, "front_x_m")) if s.dem else None
-
-
-def subcritical(s):
-    """(t0, t - t0) of the Froude rule of scripts/liquid_results.py, or (t0, None)."""
-    if not s.liquid:
-        return None, None
-    t0, ts = subcritical_after_arrival(s.liquid)
-    return t0, (None if ts is None or t0 is None else ts - t0)
-
-
-def subcritical_volume_depth(s):
-    """t - t0 of the same rule with h = the liquid volume depth in Fr (froudeDepth volume), for a
-    run whose section_froude used the surface height; None if not available or never."""
-    if not s.liquid or "section_surface_m" not in s.liquid[0]:
-        return None
-    rows = [dict(r, section_froude=(r["section_velocity_m_s"] /
-                                    math.sqrt(G * r["section_depth_m"])
-                                    if r["section_depth_m"] > 0 else math.nan))
-            for r in s.liquid]
-    t0, ts = subcritical_after_arrival(rows)
-    return None if t0 is None or ts is None else ts - t0
-
-
-def back_wall_key(s):
-    """The series column of the flow height at the back wall: the liquid surface height
-    (back_wall_surface_m, the pores of a saturated granular layer counted full: the paper's
-    "maximum flow height near the left boundary wall"), or, in a run written before that column
-    existed, the liquid volume depth (the same without particles, about eps_f times the surface
-    height in a saturated mixture)."""
-    return "back_wall_surface_m" if s.liquid and "back_wall_surface_m" in s.liquid[0] \
-        else "back_wall_depth_m"
-
-
-def back_wall(s, t):
-    if not s.liquid or s.liquid[-1]["time_s"] < t:
-        return None
-    return at(s.liquid, back_wall_key(s), t) / s.H
-
-
-def particle_energies(s):
-    """(t, E_kp, E_pp) per metre of width (J/m): translational + rotational kinetic energy."""
-    if not s.dem:
-        return None
-    t = col(s.dem, "time_s")
-    ek = col(s.dem, "ke_translational_J") + np.nan_to_num(col(s.dem, "ke_rotational_J"))
-    return t, ek / s.width, col(s.dem, "pe_J") / s.width
-
-
-def energy_excess(s):
-    """Energy the scene made: max over t of E_k(t) - (E_p(0) - E_p(t)), grains (translational +
-    rotational) and liquid together, J per metre of width, with (t, E_k, released) there. A
-    closed scene without inflow only dissipates, so this stays <= 0 but for the elastic energy
-    the settled sample stores in its contacts (not in E_p; the dry scene P shows its size) and
-    what a numerical scheme creates. Grains or liquid leaving through the outlet take their
-    energies along, which keeps the inequality. None without energies."""
-    parts = [particle_energies(s)] if s.dem else []  # (t, E_k, E_p) per metre of width
-    if s.liquid:
-        parts.append((col(s.liquid, "time_s"), col(s.liquid, "kinetic_energy_J") / s.width,
-                      col(s.liquid, "potential_energy_J") / s.width))
-    if not parts:
-        return None
-    t = parts[0][0]
-    t = t[t <= min(p[0][-1] for p in parts)]
-    ek = sum(np.interp(t, tp, k) for tp, k, _ in parts)
-    released = sum(p[0] - np.interp(t, tp, p) for tp, _, p in parts)
-    i = int(np.argmax(ek - released))
-    return {"excess_J_per_m": ek[i] - released[i], "t_s": t[i], "kinetic_J_per_m": ek[i],
-            "released_J_per_m": released[i]}
-
-
-def e_pd(mix, dry):
-    """Eq. 13 with energies per metre of width: (loss_mixture - loss_dry) / loss_dry,
-    loss = E_pp0 - E_pp - E_kp; the dry loss interpolated at the mixture's times."""
-    a, b = particle_energies(mix), particle_energies(dry)
-    if a is None or b is None:
-        return None
-    ta, eka, epa = a
-    tb, ekb, epb = b
-    loss_m = epa[0] - epa - eka
-    loss_d = np.interp(ta, tb, epb[0] - epb - ekb, right=np.nan)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = (loss_m - loss_d) / loss_d
-    ok = (loss_d > 1e-3 * epb[0]) & np.isfinite(r)
-    return ta[ok], r[ok]
-
-
-def e_fc(s):
-    """Eq. 14: (E_pf0 - (E_pf + E_kf)) / E_pf0 of the liquid."""
-    if not s.liquid:
-        return None
-    ep, ek = col(s.liquid, "potential_energy_J"), col(s.liquid, "kinetic_energy_J")
-    return col(s.liquid, "time_s"), (ep[0] - (ep + ek)) / ep[0]
-
-
-def savage(s):
-    """(t, N_sav, column): the paper's form (Eq. 16 as printed, d_p; column savage_paper) where
-    the time series has it, else another N_sav column that is not Iverson's d_p^2/h form."""
-    cols = list(s.dem[0]) if s.dem else []
-    pick = [c for c in ("savage_paper", "savage") if c in cols] or \
-        [c for c in cols if c.startswith("savage") and not c.endswith("_m") and "iverson" not in c]
-    if not pick:
-        return None
-    return col(s.dem, "time_s"), col(s.dem, pick[0]), pick[0]
-
-
-def collision_interval(t, n, threshold=0.1):
-    """First and last time of the longest run with N_sav > threshold."""
-    best, start = None, None
-    for i, v in enumerate(list(n) + [-1]):
-        if v > threshold and start is None:
-            start = i
-        elif not v > threshold and start is not None:
-            if best is None or t[i - 1] - t[start] > best[1] - best[0]:
-                best = (t[start], t[i - 1])
-            start = None
-    return best
-
-
-def stage_change(t, x):
-    """Time the front's speed first falls below half its peak after the peak (speed from
-    0.05 s differences): the end of the fast stage."""
-    if t is None or len(t) < 3:
-        return None
-    grid = np.arange(t[0], t[-1], 0.05)
-    if len(grid) < 3:
-        return None
-    v = np.gradient(np.interp(grid, t, x), grid)
-    k = int(np.argmax(v))
-    slow = np.nonzero(v[k:] < 0.5 * v[k])[0]
-    return float(grid[k + slow[0]]) if len(slow) else None
-
-
-def outflow_start(s):
-    if not s.liquid:
-        return None
-    return first_time(s.liquid, lambda r: r["volume_outlet_m3"] > 1e-3 * r["volume_domain_m3"])
-
-
-def runout_law(scenes):
-    """Fit of (l_inf - L)/L = lambda a^alpha over the finished P-I-* scenes (both front rules)."""
-    rows = []
-    for name in DRY_SERIES:
-        s = scenes[name]
-        if not s.done or not s.summary:
-            continue
-        L = s.summary["sample"]["length_m"]
-        a = s.summary["settled"]["height_m"] / L
-        thick = thickness_front(os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv"), L, D_P)
-        rows.append({"scene": name, "a": a, "runout": s.summary["runout_m"] / L, "thick": (thick - L) / L,
-                     "stop_reason": s.summary.get("stop_reason"), "end_time_s": s.summary.get("end_time_s")})
-    if len(rows) < 2:
-        return {"rows": rows}
-    alpha, lam = fit_power_law([r["a"] for r in rows], [r["runout"] for r in rows])
-    alpha_t, lam_t = fit_power_law([r["a"] for r in rows], [r["thick"] for r in rows])
-    return {"rows": rows, "alpha": alpha, "lambda": lam, "alpha_thickness": alpha_t, "lambda_thickness": lam_t}
 
 
 # --------------------------------------------------------------------------------------------
@@ -582,15 +328,6 @@ def row(quantity, paper, ours, tier, agree, note):
             "agrees": None if agree is None else bool(agree), "note": note}
 
 
-def fmt(v, nd=3):
-    """Our numbers: NA as '-', floats to ND significant digits."""
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.{nd}g}"
-    return str(v)
-
-
 def legend(ax):
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7)
@@ -864,21 +601,6 @@ def yield_stress_section():
                          f"| {fmt(100 * o.get('drag_limited_share', 0), 2)} % |")
     lines += ["", "The paper's HB&P back-wall surface: 0.997 / 0.894 H.", ""]
     return lines
-
-
-def clean(o):
-    """JSON-safe copy: NaN/inf -> None, numpy numbers -> Python ones."""
-    if isinstance(o, dict):
-        return {str(k): clean(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [clean(v) for v in o]
-    if isinstance(o, (np.floating, float)):
-        return None if not math.isfinite(float(o)) else float(o)
-    if isinstance(o, np.integer):
-        return int(o)
-    if isinstance(o, np.bool_):
-        return bool(o)
-    return o
 
 
 def main(argv=None):

@@ -12,36 +12,13 @@ collapse actually starts from. Two runout rules are fitted (docs/parameters.md, 
 import csv
 import glob
 import json
-import math
 import os
 import shutil
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from mixflow.paper import D_P  # noqa: E402
-
-
-def fit_power_law(a, r):
-    """Least squares on log r = log lambda + alpha log a."""
-    xs = [math.log(v) for v in a]
-    ys = [math.log(v) for v in r]
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    sxx = sum((x - mx) ** 2 for x in xs)
-    sxy = sum((x - mx) * (y - my) for x, y in zip(xs, ys))
-    alpha = sxy / sxx
-    return alpha, math.exp(my - alpha * mx)
-
-
-def thickness_front(profile_csv, L, d):
-    """First bin beyond L whose width-averaged column top is below one grain: its left edge."""
-    rows = list(csv.DictReader(open(profile_csv)))
-    xs = [float(r["x_m"]) for r in rows]
-    dx = xs[1] - xs[0]
-    for r, x in zip(rows, xs):
-        if x > L and float(r["h_top_m"]) < d:
-            return max(L, x - 0.5 * dx)
-    return xs[-1] + 0.5 * dx
+from mixflow.runout import fit_power_law, thickness_front  # noqa: E402
 
 
 def main():

@@ -29,7 +29,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "python"))
-import report  # noqa: E402  (Scene and the report's derived numbers)
+from mixflow import observables as obs  # noqa: E402
 from mixflow.outputs import interpolated as at  # noqa: E402
 
 TIMES = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5)  # default --times
@@ -44,8 +44,8 @@ def read(rows, key, label):
 def observables(s, times):
     """Observables of one finished scene at times (a time the run does not reach is left out)."""
     out = {}
-    pe = report.particle_energies(s)
-    efc = report.e_fc(s)
+    pe = obs.particle_energies(s)
+    efc = obs.e_fc(s)
     t_end = s.t_end()
     for label in times:
         # A run that ended within 0.01 s of a time (endTime 1.5 s stops at 1.4994 s) counts as
@@ -56,7 +56,7 @@ def observables(s, times):
         o = {}
         if s.liquid:
             o["liquid_front_m"] = read(s.liquid, "front_bed_m", t)
-            o["back_wall_height_over_H"] = report.back_wall(s, t)
+            o["back_wall_height_over_H"] = obs.back_wall(s, t)
         if efc is not None:
             o["E_fc"] = float(np.interp(t, *efc))
         if s.dem:
@@ -66,18 +66,18 @@ def observables(s, times):
             o["particle_pe_released_J_per_m"] = float(ep[0] - np.interp(t, tt, ep))
             o["particle_ke_J_per_m"] = float(np.interp(t, tt, ek))
         out[f"{label:g}s"] = o
-    t0, sub = report.subcritical(s)
+    t0, sub = obs.subcritical(s)
     out["arrival_at_1.38m_s"] = t0
     out["subcritical_after_arrival_s"] = sub
-    # The energy the run made (report.energy_excess): a scheme that is not converged in the
+    # The energy the run made (obs.energy_excess): a scheme that is not converged in the
     # tier's step or interval shows here first.
-    ex = report.energy_excess(s)
+    ex = obs.energy_excess(s)
     out["energy_excess_J_per_m"] = None if ex is None else ex["excess_J_per_m"]
     return out
 
 
 def tier_row(work, scene, times):
-    s = report.Scene(work, scene)
+    s = obs.Scene(work, scene)
     if not s.done:
         return None
     with open(os.path.join(s.dir, ".done")) as f:
@@ -128,13 +128,13 @@ def markdown(res):
         for k in keys:
             vals = [res["tiers"][t]["observables"].get(tk, {}).get(k) for t in tiers]
             ch = [res["changes"].get(st, {}).get(tk, {}).get(k) for st in steps]
-            lines.append(f"| {k} | {tk} | " + " | ".join(report.fmt(v) for v in vals) + " | " +
-                         ", ".join(report.fmt(c) for c in ch) + " |")
+            lines.append(f"| {k} | {tk} | " + " | ".join(obs.fmt(v) for v in vals) + " | " +
+                         ", ".join(obs.fmt(c) for c in ch) + " |")
     for k in SCALARS:
         vals = [res["tiers"][t]["observables"].get(k) for t in tiers]
         ch = [res["changes"].get(st, {}).get(k) for st in steps]
-        lines.append(f"| {k} | - | " + " | ".join(report.fmt(v) for v in vals) + " | " +
-                     ", ".join(report.fmt(c) for c in ch) + " |")
+        lines.append(f"| {k} | - | " + " | ".join(obs.fmt(v) for v in vals) + " | " +
+                     ", ".join(obs.fmt(c) for c in ch) + " |")
     pp = res.get("paper_physics_on_bench_geometry")
     if pp:
         lines += ["", "Paper modulus, DEM step and exchange interval on the bench's quick geometry "
@@ -186,7 +186,7 @@ def main(argv=None):
             res["paper_physics_on_bench_geometry"] = json.load(f)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "tier_trade.json"), "w") as f:
-        json.dump(report.clean(res), f, indent=2)
+        json.dump(obs.clean(res), f, indent=2)
         f.write("\n")
     with open(os.path.join(a.out, "tier_trade.md"), "w") as f:
         f.write(markdown(res))

@@ -44,7 +44,6 @@ usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out
 import argparse
 import csv
 import json
-import math
 import os
 import re
 import shutil

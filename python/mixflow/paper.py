@@ -9,6 +9,9 @@ SECTION_X = 1.38  # the section where the Froude number is taken (m)
 TABLE1 = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V", "P", "W", "HB", "B", "HB-I", "B-I",
           "W+P", "HB+P", "B+P"]
 PAPER_NAME = {s: s.replace("+", "&") for s in TABLE1}
+DRY_SERIES = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V"]  # the runout law's aspect ratios
+LIQUIDS = ["W", "HB", "B"]
+MIXTURES = ["W+P", "HB+P", "B+P"]
 
 # The paper's numbers (docs/model.md §8): subcritical times after the front's arrival at
 # SECTION_X (s), alpha, back-wall surface heights / H, B&P's Savage collisional interval (s),

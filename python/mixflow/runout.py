@@ -1,0 +1,28 @@
+"""The dry runout law (l_inf - L)/L = lambda a^alpha: its fit and the deposit's thickness front
+(scripts/runout_fit.py, report.py, lube_small_columns.py)."""
+
+import csv
+import math
+
+
+def fit_power_law(a, r):
+    """Least squares on log r = log lambda + alpha log a."""
+    xs = [math.log(v) for v in a]
+    ys = [math.log(v) for v in r]
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    sxy = sum((x - mx) * (y - my) for x, y in zip(xs, ys))
+    alpha = sxy / sxx
+    return alpha, math.exp(my - alpha * mx)
+
+
+def thickness_front(profile_csv, L, d):
+    """First bin beyond L whose width-averaged column top is below one grain: its left edge."""
+    rows = list(csv.DictReader(open(profile_csv)))
+    xs = [float(r["x_m"]) for r in rows]
+    dx = xs[1] - xs[0]
+    for r, x in zip(rows, xs):
+        if x > L and float(r["h_top_m"]) < d:
+            return max(L, x - 0.5 * dx)
+    return xs[-1] + 0.5 * dx
