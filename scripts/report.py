@@ -2,6 +2,7 @@
 """Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
 
 usage: report.py [--work runs/reference[,runs/quick,...]] [--out results/li_zhao_2018]
+                 [--bulk-work runs/bulk]
 
 Reads the finished scenes (WORK/<scene>/.done; with several work directories, each scene from the
 first one where it finished, so a report can take each scene from the best tier that ran it) and
@@ -11,6 +12,8 @@ OUT/summary.json: liquid and granular fronts, relative velocities, kinetic energ
 dry deposits and the runout law, HB-I/B-I normalised fronts, and the table "the paper says / we
 get" for the numbers of docs/model.md §8. A scene that is not finished is listed as such; a
 figure or number that the finished scenes do not allow says so instead of stopping the report.
+With the bulk model's runs of the mixtures (--bulk-work, the suite's bulk tier), a section puts
+its numbers beside the CFD-DEM ones.
 """
 
 import argparse
@@ -510,7 +513,7 @@ def table(sc, law):
 
 # --------------------------------------------------------------------------------------------
 
-def write_report(out, work, sc, F, rows, law, command):
+def write_report(out, work, sc, F, rows, law, command, bulk_lines=()):
     fin = [n for n in suite.TABLE1 if sc[n].done]
     lines = ["# Li & Zhao (2018) scenes: the paper says / we get", "",
              f"Made by `{command}` from `{work}` (scripts/suite.py runs, docs/suite.md). "
@@ -560,6 +563,7 @@ def write_report(out, work, sc, F, rows, law, command):
             lines.append(f"| {s.paper_name} | {s.tier or '-'} | {fmt(e['excess_J_per_m'])} | "
                          f"{fmt(e['t_s'])} | {fmt(e['kinetic_J_per_m'])} | {fmt(e['released_J_per_m'])} |")
         lines.append("")
+    lines += list(bulk_lines)
     lines += yield_stress_section()
     if law.get("rows"):
         lines += ["## Dry runouts", "", "| scene | a (settled) | (l∞ − L)/L cluster | one-grain-thick | stop |",
@@ -570,6 +574,57 @@ def write_report(out, work, sc, F, rows, law, command):
         lines.append("")
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
+
+
+def front_at(front, t):
+    """A front (t, x) at time T, None if the run ended before."""
+    if front is None or front[0][-1] < t - 1e-9:
+        return None
+    return float(np.interp(t, *front))
+
+
+def bulk_rows(sc, bulk):
+    """The mixtures' numbers from the CFD-DEM runs (SC) beside the bulk model's runs (BULK, the
+    suite's bulk tier: the same case directories run by mixflowBulkFoam), with the paper's where
+    it gives one; None where a run does not allow the number."""
+    rows = []
+    for n in MIXTURES:
+        s, b = sc[n], bulk[n]
+        if not b.done:
+            continue
+        items = [("Fr < 1 at x = %g m, t − t0 (s)" % SECTION_X, PAPER["subcritical"][n],
+                  subcritical(s)[1] if s.done else None, subcritical(b)[1])]
+        for t in (1.0, 3.0):
+            items.append((f"liquid front at {t:g} s (m)", None,
+                          front_at(liquid_front(s) if s.done else None, t),
+                          front_at(liquid_front(b), t)))
+            items.append((f"granular front at {t:g} s (m); bulk: the mixture's front", None,
+                          front_at(granular_front(s) if s.done else None, t),
+                          front_at(liquid_front(b), t)))
+        if n in PAPER["back_wall"]:
+            for t, paper in zip((0.5, 1.0), PAPER["back_wall"][n]):
+                items.append((f"back-wall height at {t:g} s / H", paper,
+                              back_wall(s, t) if s.done else None, back_wall(b, t)))
+        for q, paper, ours, model in items:
+            rows.append({"scene": s.paper_name, "quantity": q, "paper": paper,
+                         "cfd_dem": ours, "cfd_dem_tier": s.tier if s.done else None,
+                         "bulk": model, "bulk_tier": b.tier})
+    return rows
+
+
+def bulk_section(rows, bulk_work):
+    if not rows:
+        return []
+    lines = ["## The bulk model beside CFD-DEM", "",
+             f"The quasi two-phase bulk model (docs/bulk_model.md) on the same cases, from `{bulk_work}` "
+             "(`python3 scripts/suite.py --tier bulk --scenes W+P,HB+P,B+P`; its calibration stage and "
+             "errors: results/bulk_model/). The bulk model has one mixture phase: its front is the "
+             "mixture's.", "",
+             "| scene | quantity | paper | CFD-DEM | tier | bulk model | tier |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['quantity']} | {fmt(r['paper'])} | {fmt(r['cfd_dem'])} | "
+                     f"{r['cfd_dem_tier'] or '-'} | {fmt(r['bulk'])} | {r['bulk_tier'] or '-'} |")
+    return lines + [""]
 
 
 def yield_stress_section():
@@ -609,6 +664,9 @@ def main(argv=None):
                     help="suite.py's work directory, or several, comma-separated, in order of "
                     "preference")
     ap.add_argument("--out", default="results/li_zhao_2018")
+    ap.add_argument("--bulk-work", default="runs/bulk",
+                    help="the suite's bulk-tier work directory (the bulk model's column; skipped "
+                    "where its scenes are not finished)")
     args = ap.parse_args(argv)
     def absolute(p):
         return p if os.path.isabs(p) else os.path.join(suite.ROOT, p)
@@ -628,13 +686,17 @@ def main(argv=None):
     F = Figures(out)
     make_figures(F, sc, fin, law)
     rows = table(sc, law)
-    command = f"python3 scripts/report.py --work {args.work} --out {args.out}"
-    write_report(out, work, sc, F, rows, law, command)
+    bulk = {n: Scene(absolute(args.bulk_work), n) for n in MIXTURES}
+    brows = bulk_rows(sc, bulk)
+    command = (f"python3 scripts/report.py --work {args.work} --out {args.out}"
+               + (f" --bulk-work {args.bulk_work}" if brows else ""))
+    write_report(out, work, sc, F, rows, law, command, bulk_section(brows, args.bulk_work))
     summary = {"command": command, "work": work,
                "scenes": {n: {"status": "finished" if sc[n].done else ("unfinished" if sc[n].exists else "not run"),
                               "tier": sc[n].tier, "content": sc[n].content,
                               "simulated_to_s": sc[n].t_end() if sc[n].done else None} for n in suite.TABLE1},
                "paper_vs_ours": rows,
+               "bulk_model": brows,
                "runout_law": {k: v for k, v in law.items()},
                "subcritical_after_arrival_s": {n: subcritical(sc[n])[1] for n in LIQUIDS + MIXTURES if sc[n].done},
                "energy_excess": {n: energy_excess(sc[n]) for n in fin},
