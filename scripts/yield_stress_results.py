@@ -39,6 +39,11 @@ usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out
    the packing (0.1, the default, settles to about 0.61). Against the reference-tier runs in
    --reference-work: the settled sample fraction, fronts at 3 s and the grains' released energy;
    summary.json "packing", packing.csv.
+4. With --paper-window NAME=DIR,... (read only): finished paper-window runs of HB+P (made by
+   `suite.py --tier cases/tiers/paper-window --scenes HB+P --work DIR [--set ...]`, e.g. the
+   paper's scheme and the default): granular and liquid fronts, the grains' released energy, the
+   back-wall surface / H at 0.1-0.5 s and the share of grains the held drag's bound limited;
+   summary.json "paper_faithful" "paper_window", paper_window.csv.
 """
 
 import argparse
@@ -275,6 +280,34 @@ def mixtures(work):
     return out
 
 
+def paper_window(items, times=(0.1, 0.2, 0.3, 0.4, 0.5)):
+    """Finished paper-window runs NAME=DIR (DIR/HB+P): the observables at TIMES (those the run
+    reached) and the share of grains whose held drag the stability bound limited."""
+    out = {}
+    for item in items:
+        name, d = item.split("=", 1)
+        rd = os.path.join(os.path.abspath(d), "HB+P")
+        dem = series(os.path.join(rd, outputs.DEM_SERIES))
+        liq = series(os.path.join(rd, outputs.LIQUID_SERIES))
+        ex = series(os.path.join(rd, outputs.EXCHANGE), comments=True)
+        t_end = dem[-1][outputs.TIME]
+        rec = {"run": os.path.relpath(rd, ROOT), "simulated_to_s": t_end,
+               "grain_pe_initial_J": dem[0]["pe_J"], "at": {}}
+        for t in times:
+            if t > t_end + 0.5 * (dem[1][outputs.TIME] - dem[0][outputs.TIME]):
+                continue  # beyond the run (half a sample interval: the last row's rounding)
+            upto = [r for r in ex if r["time"] <= t + 1e-9]
+            rec["at"][f"{t:g}"] = {
+                "granular_front_m": at(dem, "front_x_m", t),
+                "grain_pe_released_J": dem[0]["pe_J"] - at(dem, "pe_J", t),
+                "liquid_front_m": at(liq, "front_bed_m", t),
+                "back_wall_surface_H": at(liq, "back_wall_surface_m", t) / H,
+                "drag_limited_share": (sum(r["dragLimited"] / r["particles"] for r in upto)
+                                       / len(upto)) if upto else None}
+        out[name] = rec
+    return out
+
+
 def settled_fraction(run_dir):
     with open(os.path.join(run_dir, "dem", "settled.state")) as f:
         return float(re.search(r"sampleFraction\s+([0-9.eE+-]+);", f.read()).group(1))
@@ -316,6 +349,8 @@ def main():
     ap.add_argument("--only-beds", action="store_true",
                     help="only the non-Newtonian bed and power-law sphere checks (about 2 min)")
     ap.add_argument("--packing", help="comma-separated FRACTION:SETTLE_FRICTION (stage 3)")
+    ap.add_argument("--paper-window", help="comma-separated NAME=DIR of finished paper-window "
+                    "runs of HB+P (stage 4: read only)")
     ap.add_argument("--reference-work", default=os.path.join(ROOT, "runs", "reference"),
                     help="the reference-tier suite run at the cases' own solidFraction")
     a = ap.parse_args()
@@ -364,6 +399,17 @@ def main():
             for scene, runs in summary["packing"].items():
                 for frac, obs in sorted(runs.items()):
                     w.writerow([scene, frac] + [obs.get(k, "") for k in keys])
+    if a.paper_window:
+        pw = paper_window(a.paper_window.split(","))
+        summary.setdefault("paper_faithful", {})["paper_window"] = pw
+        with open(os.path.join(out, "paper_window.csv"), "w", newline="") as f:
+            w = csv.writer(f)
+            keys = ["granular_front_m", "grain_pe_released_J", "liquid_front_m",
+                    "back_wall_surface_H", "drag_limited_share"]
+            w.writerow(["variant", "time_s"] + keys)
+            for name, rec in pw.items():
+                for t, obs in rec["at"].items():
+                    w.writerow([name, t] + [obs.get(k, "") for k in keys])
     with open(path, "w") as f:
         json.dump(summary, f, indent=1, sort_keys=True)
     print(f"wrote {path}")
