@@ -50,7 +50,7 @@ Schema makeSchema() {
                     "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s"),
           dictParam("basal", "the mixture's sliding law at the bed (the bottom wall)"),
           wordParam("basal.law", b.basalLaw, {"noSlip", "coulomb"},
-                    "noSlip, or coulomb: the bed's shear stress limited to tan δ_m p_m "
+                    "noSlip, or coulomb: the bed's shear stress limited to tan δ_m ρ* p_m "
                     "(bulkCoulombSlip; the bed sticks below it; the air stays no-slip)"),
           scalarParam("basal.tanDelta", b.tanDelta, Range::closed(0.0, 5.0), "",
                       "μ_m = tan δ_m of the coulomb law (0: free slip); default the DEM's wall "
