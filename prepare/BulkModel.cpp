@@ -48,6 +48,13 @@ Schema makeSchema() {
                       "magnitude); at rest ν_s + m_y τ_ys"),
           wordParam("solid.yieldPressure", b.yieldPressure, {"paper", "buoyancyReduced"},
                     "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s"),
+          dictParam("basal", "the mixture's sliding law at the bed (the bottom wall)"),
+          wordParam("basal.law", b.basalLaw, {"noSlip", "coulomb"},
+                    "noSlip, or coulomb: the bed's shear stress limited to tan δ_m ρ* p_m "
+                    "(bulkCoulombSlip; the bed sticks below it; the air stays no-slip)"),
+          scalarParam("basal.tanDelta", b.tanDelta, Range::closed(0.0, 5.0), "",
+                      "μ_m = tan δ_m of the coulomb law (0: free slip); default the DEM's wall "
+                      "friction, not calibrated"),
           scalarParam("relaxation", b.relaxation, Range::openClosed(0.0, 1.0), "",
                       "under-relaxation of the viscosity between PIMPLE correctors"),
       });
@@ -110,6 +117,11 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
     s.fail("viscosity",
            "value 0 with no yield stress (tanPhi 0, cohesion 0) leaves the grains "
            "without any stress; allowed range (0, inf) then");
+
+  const Dictionary basal = d.subDictOrEmpty("basal");
+  sc.allowOnly(basal, "basal");
+  b.basalLaw = sc.word(basal, "basal.law");
+  b.tanDelta = sc.scalar(basal, "basal.tanDelta");
 
   b.relaxation = sc.scalar(d, "relaxation");
   const double rhoStar = b.solidFraction * solidDensity + (1 - b.solidFraction) * fluidDensity;

@@ -24,6 +24,10 @@ struct BulkModel {
   double cohesion = 0;                            // Pa
   double regularisation = 100;                    // m_y (s)
   std::string yieldPressure = "buoyancyReduced";  // paper | buoyancyReduced
+  // Basal sliding law of the mixture at the bed (the bottom patch): noSlip, or coulomb with the
+  // wall shear stress limited to tanDelta times the mixture's pressure (bulkCoulombSlip).
+  std::string basalLaw = "noSlip";  // noSlip | coulomb
+  double tanDelta = 0.7;            // tan(delta_m); the DEM's wall friction coefficient
   double relaxation = 1;      // under-relaxation of the viscosity between correctors (1: none)
   double solidDensity = 0;    // rho_s (kg/m3): sceneProperties particles.density
   double mixtureDensity = 0;  // rho* (kg/m3): bulkProperties density, else alpha_s rho_s +

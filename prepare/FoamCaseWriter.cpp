@@ -86,12 +86,13 @@ bool periodic(const LiquidCase& c) {
 // Patch list with the boundary condition of one field on each patch.
 struct PatchBCs {
   std::string wall, outlet, atmosphere;
+  std::string bed = "";  // the bottom wall's, when it differs from the other walls'
 };
 
 std::string boundaryField(const LiquidCase& c, const PatchBCs& bc) {
   std::ostringstream s;
   s << "boundaryField\n{\n";
-  s << "    bottom      { " << bc.wall << " }\n";
+  s << "    bottom      { " << (bc.bed.empty() ? bc.wall : bc.bed) << " }\n";
   s << "    backWall    { " << bc.wall << " }\n";
   if (c.numerics.dimensions == 2) {
     s << "    frontAndBack { type empty; }\n";
@@ -104,6 +105,13 @@ std::string boundaryField(const LiquidCase& c, const PatchBCs& bc) {
   s << "    atmosphere  { " << bc.atmosphere << " }\n";
   s << "}\n";
   return s.str();
+}
+
+// The bed's velocity condition: no-slip, or the bulk model's Coulomb sliding law (mixflowBulkFoam's
+// bulkCoulombSlip, constant/bulkProperties basal).
+std::string bedVelocity(const LiquidCase& c) {
+  if (!c.bulkModel() || c.bulk.basalLaw == "noSlip") return "";
+  return "type bulkCoulombSlip; tanDelta " + num(c.bulk.tanDelta) + "; value uniform (0 0 0);";
 }
 
 std::string blockMeshDict(const LiquidCase& c) {
@@ -357,7 +365,8 @@ void writeFoamCase(const LiquidCase& c, int ranks) {
   writeFile(c, "0/U", "volVectorField",
             "dimensions      [0 1 -1 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\n" +
                 boundaryField(c, {"type noSlip;", "type zeroGradient;",
-                                  "type pressureInletOutletVelocity; value uniform (0 0 0);"}));
+                                  "type pressureInletOutletVelocity; value uniform (0 0 0);",
+                                  bedVelocity(c)}));
   writeFile(c, "0/p_rgh", "volScalarField",
             "dimensions      [1 -1 -2 0 0 0 0];\n\ninternalField   uniform 0;\n\n" +
                 boundaryField(c, {"type fixedFluxPressure; value uniform 0;", "type zeroGradient;",
@@ -386,7 +395,9 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
        << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource << "; solid nu_s "
        << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi) << ", cohesion "
        << num(b.cohesion) << " Pa, m_y " << num(b.regularisation) << " s (" << b.yieldPressure
-       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s\n";
+       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
+       << (b.basalLaw == "coulomb" ? "Coulomb sliding, tanDelta " + num(b.tanDelta) : b.basalLaw)
+       << "\n";
   }
   const bool autoCorrectors = c.numerics.nCorrectors == 0;
   const double D = c.viscousNumber(), limit = LiquidCase::kViscousNumberFewCorrectors;

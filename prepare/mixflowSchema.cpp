@@ -36,7 +36,7 @@ std::vector<Table> tables() {
       {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
       {"couplingProperties", mixflow::coupling::CouplingProperties::schema(), {""}},
-      {"bulkProperties", mixflow::cfd::BulkModel::schema(), {"", "drifts", "solid"}},
+      {"bulkProperties", mixflow::cfd::BulkModel::schema(), {"", "drifts", "solid", "basal"}},
   };
 }
 
