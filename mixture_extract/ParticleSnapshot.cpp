@@ -7,27 +7,15 @@
 #include <filesystem>
 #include <string_view>
 
+#include "BinarySnapshot.h"
 #include "Dictionary.h"
+#include "SnapshotFiles.h"
 
 namespace mixflow::mx {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string slurp(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
-  std::string s;
-  std::fseek(f, 0, SEEK_END);
-  const long n = std::ftell(f);
-  std::fseek(f, 0, SEEK_SET);
-  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
-  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
-  std::fclose(f);
-  if (got != s.size()) throw InputError(path + ": read error");
-  return s;
-}
 
 // Whitespace tokenizer over the whole file (legacy VTK ASCII is whitespace separated).
 class Scanner {
@@ -101,8 +89,22 @@ class Scanner {
 
 }  // namespace
 
+std::string readFileBytes(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
+  std::string s;
+  std::fseek(f, 0, SEEK_END);
+  const long n = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
+  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
+  std::fclose(f);
+  if (got != s.size()) throw InputError(path + ": read error");
+  return s;
+}
+
 ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
-  const std::string text = slurp(path);
+  const std::string text = readFileBytes(path);
   Scanner sc(text, path);
   ParticleSnapshot snap;
   snap.time = time;
@@ -187,10 +189,25 @@ ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
     sc.fail("missing array(s):" + missing +
             " (the snapshot must come from mixflowDem's dump: id type x y z vx vy vz ... radius "
             "mass c_pstress[1..6])");
-  for (long i = 0; i < n; ++i)
-    if (!(snap.radius[i] > 0) || !(snap.mass[i] > 0))
-      sc.fail("particle " + std::to_string(i) + " has non-positive radius or mass");
+  checkParticles(snap);
   return snap;
+}
+
+void checkParticles(const ParticleSnapshot& snap) {
+  for (size_t i = 0; i < snap.size(); ++i)
+    if (!(snap.radius[i] > 0) || !(snap.mass[i] > 0))
+      throw InputError(snap.file + ": particle " + std::to_string(i) +
+                       " has non-positive radius or mass");
+}
+
+ParticleSnapshot readSnapshot(const SnapshotEntry& e) {
+  const std::string bin = dem::binarySnapshotPath(e.file);
+  return fs::is_regular_file(bin) ? readBinarySnapshot(bin, e.time)
+                                  : readParticleSnapshot(e.file, e.time);
+}
+
+bool snapshotExists(const SnapshotEntry& e) {
+  return fs::is_regular_file(e.file) || fs::is_regular_file(dem::binarySnapshotPath(e.file));
 }
 
 std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir) {
@@ -200,7 +217,7 @@ std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir) {
     throw InputError(path +
                      ": cannot open file (missing): no particle snapshots in this case "
                      "(mixflowDem writes VTK/particles.vtk.series as it runs)");
-  const std::string text = slurp(path);
+  const std::string text = readFileBytes(path);
   auto fail = [&](const std::string& why) { throw InputError(path + ": " + why); };
   const size_t files = text.find("\"files\"");
   if (files == std::string::npos) fail("no \"files\" list (not a ParaView .series file)");

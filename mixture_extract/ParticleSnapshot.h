@@ -30,7 +30,7 @@ struct ParticleSnapshot {
 };
 
 struct SnapshotEntry {
-  std::string file;  // absolute or case-relative path of the .vtk file
+  std::string file;  // absolute or case-relative path of the .vtk file (listed in the series)
   double time = 0;
 };
 
@@ -39,5 +39,18 @@ std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir);
 
 // Reads one snapshot file. Throws InputError naming the file and the missing/broken array.
 ParticleSnapshot readParticleSnapshot(const std::string& path, double time);
+
+// The snapshot of an entry: its binary twin (BinarySnapshot.h) when the DEM wrote one, which is
+// faster to read and not rounded, else the .vtk file.
+ParticleSnapshot readSnapshot(const SnapshotEntry& e);
+
+// True when the entry's .vtk or its binary twin is a file.
+bool snapshotExists(const SnapshotEntry& e);
+
+// Throws InputError naming snap.file when a particle's radius or mass is not positive.
+void checkParticles(const ParticleSnapshot& snap);
+
+// The whole file. Throws InputError naming it when it cannot be opened or read.
+std::string readFileBytes(const std::string& path);
 
 }  // namespace mixflow::mx
