@@ -60,8 +60,8 @@ def write_binary_snapshot(path, rows, step=0, chunks=1, box=(0, 1, 0, 1, 0, 1)):
             f.write(part.tobytes())
 
 
-def read_binary_snapshot(path):
-    """The rows (n, columns) of a binary snapshot, all chunks in file order."""
+def binary_snapshot_chunks(path):
+    """The rank chunks of a binary snapshot, in file order: a list of (rows, columns) arrays."""
     import numpy as np
     with open(path, "rb") as f:
         b = f.read()
@@ -73,10 +73,16 @@ def read_binary_snapshot(path):
         (n,) = struct.unpack_from("<i", b, off)
         parts.append(np.frombuffer(b, dtype="<f8", count=n, offset=off + 4).reshape(-1, cols))
         off += 4 + 8 * n
-    rows = np.vstack(parts) if parts else np.zeros((0, cols))
-    if len(rows) != natoms or off != len(b):
-        raise ValueError(f"{path}: {len(rows)} rows in the chunks, header says {natoms}")
-    return rows
+    if sum(len(p) for p in parts) != natoms or off != len(b):
+        raise ValueError(f"{path}: the chunks do not hold the header's {natoms} particles")
+    return parts
+
+
+def read_binary_snapshot(path):
+    """The rows (n, columns) of a binary snapshot, all chunks in file order."""
+    import numpy as np
+    parts = binary_snapshot_chunks(path)
+    return np.vstack(parts) if parts else np.zeros((0, len(SNAPSHOT_COLUMNS)))
 
 
 # Column names the scripts read.
