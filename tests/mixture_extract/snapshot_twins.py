@@ -11,7 +11,9 @@ count may move by 2 at most and all of them by 1 % of the total.
 
 Run as a script, it makes such a case with 2 MPI ranks (the settled column of tests/collapse/column,
 0.02 s after the gate opens, x slabs balanced so both ranks hold particles) and checks that each
-binary snapshot holds two non-empty rank chunks that mixflowExtract reads as the VTK's particles.
+binary snapshot holds two non-empty rank chunks that mixflowExtract reads as the VTK's particles;
+then runs that case again in serial with demDict binarySnapshots off: no .bin is left (the earlier
+run's would be read instead of the new VTK files) and the extractor reads the VTK files.
 
 usage: snapshot_twins.py MIXFLOWDEM MIXFLOWEXTRACT COLUMN_CASE WORKDIR"""
 import os
@@ -134,5 +136,14 @@ if __name__ == "__main__":
         sizes = [len(p) for p in outputs.binary_snapshot_chunks(os.path.splitext(vtk)[0] + ".bin")]
         check(len(sizes) == 2 and min(sizes) > 0, f"t = {t}: rank chunks of {sizes} particles")
     check_twins(extract_exe, case2, check)
+    demdict = os.path.join(case2, "system/demDict")
+    text = open(demdict).read().replace('processors "2 1 1";', "") + "binarySnapshots off;\n"
+    open(demdict, "w").write(text)
+    r = subprocess.run([dem_exe, "-case", case2], capture_output=True, text=True)
+    left = [n for n in os.listdir(os.path.join(case2, "VTK/particles")) if n.endswith(".bin")]
+    check(r.returncode == 0 and not left, f"binarySnapshots off: run exit {r.returncode}, "
+          f".bin files left {left}")
+    rc, counts, _ = _extract(extract_exe, case2)
+    check(rc == 0 and counts is not None and counts[1] == 0, f"then the VTK files are read ({counts})")
     print(f"{len(failures)} failure(s)")
     sys.exit(1 if failures else 0)
