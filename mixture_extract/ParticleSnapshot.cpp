@@ -17,6 +17,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string slurp(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
+  std::string s;
+  std::fseek(f, 0, SEEK_END);
+  const long n = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
+  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
+  std::fclose(f);
+  if (got != s.size()) throw InputError(path + ": read error");
+  return s;
+}
+
 // Whitespace tokenizer over the whole file (legacy VTK ASCII is whitespace separated).
 class Scanner {
  public:
@@ -89,22 +103,8 @@ class Scanner {
 
 }  // namespace
 
-std::string readFileBytes(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
-  std::string s;
-  std::fseek(f, 0, SEEK_END);
-  const long n = std::ftell(f);
-  std::fseek(f, 0, SEEK_SET);
-  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
-  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
-  std::fclose(f);
-  if (got != s.size()) throw InputError(path + ": read error");
-  return s;
-}
-
 ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
-  const std::string text = readFileBytes(path);
+  const std::string text = slurp(path);
   Scanner sc(text, path);
   ParticleSnapshot snap;
   snap.time = time;
@@ -217,7 +217,7 @@ std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir) {
     throw InputError(path +
                      ": cannot open file (missing): no particle snapshots in this case "
                      "(mixflowDem writes VTK/particles.vtk.series as it runs)");
-  const std::string text = readFileBytes(path);
+  const std::string text = slurp(path);
   auto fail = [&](const std::string& why) { throw InputError(path + ": " + why); };
   const size_t files = text.find("\"files\"");
   if (files == std::string::npos) fail("no \"files\" list (not a ParaView .series file)");

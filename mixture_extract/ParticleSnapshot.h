@@ -1,6 +1,6 @@
 // Particle snapshots written by mixflowDem (LIGGGHTS `dump custom/vtk`): legacy VTK 5.1 ASCII
 // POLYDATA files VTK/particles/particles_<step>.vtk and their ParaView index
-// VTK/particles.vtk.series.
+// VTK/particles.vtk.series; beside them, binary twins of the same columns (BinarySnapshot.h).
 //
 // Arrays used (LIGGGHTS quantity in brackets):
 //   POINTS x, y, z [x y z]; mass [mass]; radius [radius]; v [vx vy vz];
@@ -49,8 +49,5 @@ bool snapshotExists(const SnapshotEntry& e);
 
 // Throws InputError naming snap.file when a particle's radius or mass is not positive.
 void checkParticles(const ParticleSnapshot& snap);
-
-// The whole file. Throws InputError naming it when it cannot be opened or read.
-std::string readFileBytes(const std::string& path);
 
 }  // namespace mixflow::mx
