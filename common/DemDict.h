@@ -44,6 +44,7 @@ struct DemSpec {
   double arrestMinTime = 0.3;        // never declare arrest before this time (s)
   std::string processors = "* * *";  // LIGGGHTS processors grid
   double balanceInterval = 0;        // s between re-balances of x slabs by particles; 0: never
+  bool binarySnapshots = true;       // a binary dump beside each VTK snapshot (dem/SnapshotFiles.h)
   // Savage number at the section x = savageX (docs/model.md §8): the shear rate is the
   // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
   // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.

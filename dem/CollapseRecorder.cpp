@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "Dictionary.h"
+#include "SnapshotFiles.h"
 
 namespace mixflow::dem {
 
@@ -152,10 +153,15 @@ void CollapseRecorder::startSnapshots() {
   // opening, which must be LIGGGHTS step 0 (reset_timestep 0) so dumps fall on writeInterval.
   snapshotEvery_ =
       sampleEvery_ * std::max(1L, std::lround(scene_.writeInterval / (sampleEvery_ * dt_)));
-  lig_.command("dump snap all custom/vtk " + std::to_string(snapshotEvery_) + " " +
-               (fs::path(scene_.caseDir) / "VTK" / "particles" / "particles_*.vtk").string() +
-               " id type x y z vx vy vz fx fy fz omegax omegay omegaz radius mass c_pstress[1] "
-               "c_pstress[2] c_pstress[3] c_pstress[4] c_pstress[5] c_pstress[6]");
+  const std::string every = std::to_string(snapshotEvery_) + " ";
+  lig_.command("dump snap all custom/vtk " + every + snapshotPattern(scene_.caseDir, "vtk") + " " +
+               snapshotColumns());
+  // The same columns in LAMMPS' binary dump (a .bin name selects it): what mixflowExtract reads.
+  if (scene_.dem.binarySnapshots)
+    lig_.command("dump snapbin all custom " + every + snapshotPattern(scene_.caseDir, "bin") + " " +
+                 snapshotColumns());
+  else if (rank_ == 0)
+    removeBinarySnapshots(scene_.caseDir);  // an earlier run's: the extractor would prefer them
 }
 
 bool CollapseRecorder::atSnapshot() const { return (lig_.step() - step0_) % snapshotEvery_ == 0; }

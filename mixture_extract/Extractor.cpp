@@ -261,7 +261,7 @@ ExtractReport Extractor::run() {
   for (const Plan& p : plans)
     if (p.state == WindowState::Ready)
       for (size_t k : p.snapshots)
-        if (!fs::is_regular_file(series[k].file))
+        if (!snapshotExists(series[k]))
           throw InputError(series[k].file +
                            ": cannot open file (missing or unreadable; listed in " +
                            (fs::path(opt_.caseDir) / "VTK" / "particles.vtk.series").string() +
@@ -306,7 +306,8 @@ ExtractReport Extractor::run() {
                               "(p_s / rho_s), the paper's convention; names carry _raw/_density)"},
       {"liquid_density_source", s.liquidDensitySource},
       {"particle_source",
-       "LIGGGHTS dump custom/vtk snapshots VTK/particles.vtk.series: x y z, v, mass, radius, "
+       "LIGGGHTS dump custom/vtk snapshots VTK/particles.vtk.series (their binary dump twins "
+       "particles_<step>.bin where written): x y z, v, mass, radius, "
        "c_pstress[1-6] (compute stress/atom, stress x volume, N m)"},
       {"particle_stress",
        std::string("contact stress x volume C_i = c_pstress_i") +
@@ -429,6 +430,8 @@ ExtractReport Extractor::run() {
   }
 
   H5Output out(rep.h5, grid, s, attrs, opt_.overwrite);
+  double readSecs = 0;
+  long binaryRead = 0;  // of rep.snapshotsRead, read from their binary twins
   for (const Plan& p : plans) {
     if (p.state != WindowState::Ready) continue;
     BinAccumulator acc(grid, kinetic);
@@ -438,10 +441,15 @@ ExtractReport Extractor::run() {
       for (size_t k = b; k < std::min(p.snapshots.size(), b + threads); ++k) {
         const SnapshotEntry& e = series[p.snapshots[k]];
         jobs.push_back(std::async(threads > 1 ? std::launch::async : std::launch::deferred,
-                                  [e] { return readParticleSnapshot(e.file, e.time); }));
+                                  [e] { return readSnapshot(e); }));
       }
       for (auto& j : jobs) {
-        acc.addSnapshot(j.get());
+        // Time spent waiting for the snapshots (all of reading them with -threads 1).
+        const auto r0 = std::chrono::steady_clock::now();
+        ParticleSnapshot snap = j.get();
+        readSecs += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
+        binaryRead += fs::path(snap.file).extension() == ".bin";
+        acc.addSnapshot(snap);
         ++rep.snapshotsRead;
       }
     }
@@ -482,8 +490,9 @@ ExtractReport Extractor::run() {
        << " already in the file, " << rep.deferred << " waiting for data, " << rep.skipped
        << " after the end of the case";
   if (rep.unpaired) log_ << ", " << rep.unpaired << " without paired fluid data";
-  log_ << "; " << rep.snapshotsRead << " snapshots read in " << num(secs) << " s\n  " << rep.h5
-       << "\n  " << rep.xdmf << "\n  " << rep.csv << std::endl;
+  log_ << "; " << rep.snapshotsRead << " snapshots read (" << binaryRead << " binary) in "
+       << num(secs) << " s (" << num(readSecs) << " s reading them)\n  " << rep.h5 << "\n  "
+       << rep.xdmf << "\n  " << rep.csv << std::endl;
   return rep;
 }
 

@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <string_view>
 
+#include "BinarySnapshot.h"
 #include "Dictionary.h"
+#include "SnapshotFiles.h"
 
 namespace mixflow::mx {
 
@@ -187,10 +189,25 @@ ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
     sc.fail("missing array(s):" + missing +
             " (the snapshot must come from mixflowDem's dump: id type x y z vx vy vz ... radius "
             "mass c_pstress[1..6])");
-  for (long i = 0; i < n; ++i)
-    if (!(snap.radius[i] > 0) || !(snap.mass[i] > 0))
-      sc.fail("particle " + std::to_string(i) + " has non-positive radius or mass");
+  checkParticles(snap);
   return snap;
+}
+
+void checkParticles(const ParticleSnapshot& snap) {
+  for (size_t i = 0; i < snap.size(); ++i)
+    if (!(snap.radius[i] > 0) || !(snap.mass[i] > 0))
+      throw InputError(snap.file + ": particle " + std::to_string(i) +
+                       " has non-positive radius or mass");
+}
+
+ParticleSnapshot readSnapshot(const SnapshotEntry& e) {
+  const std::string bin = dem::binarySnapshotPath(e.file);
+  return fs::is_regular_file(bin) ? readBinarySnapshot(bin, e.time)
+                                  : readParticleSnapshot(e.file, e.time);
+}
+
+bool snapshotExists(const SnapshotEntry& e) {
+  return fs::is_regular_file(e.file) || fs::is_regular_file(dem::binarySnapshotPath(e.file));
 }
 
 std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir) {

@@ -1,6 +1,6 @@
 // Particle snapshots written by mixflowDem (LIGGGHTS `dump custom/vtk`): legacy VTK 5.1 ASCII
 // POLYDATA files VTK/particles/particles_<step>.vtk and their ParaView index
-// VTK/particles.vtk.series.
+// VTK/particles.vtk.series; beside them, binary twins of the same columns (BinarySnapshot.h).
 //
 // Arrays used (LIGGGHTS quantity in brackets):
 //   POINTS x, y, z [x y z]; mass [mass]; radius [radius]; v [vx vy vz];
@@ -30,7 +30,7 @@ struct ParticleSnapshot {
 };
 
 struct SnapshotEntry {
-  std::string file;  // absolute or case-relative path of the .vtk file
+  std::string file;  // absolute or case-relative path of the .vtk file (listed in the series)
   double time = 0;
 };
 
@@ -39,5 +39,15 @@ std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir);
 
 // Reads one snapshot file. Throws InputError naming the file and the missing/broken array.
 ParticleSnapshot readParticleSnapshot(const std::string& path, double time);
+
+// The snapshot of an entry: its binary twin (BinarySnapshot.h) when the DEM wrote one, which is
+// faster to read and not rounded, else the .vtk file.
+ParticleSnapshot readSnapshot(const SnapshotEntry& e);
+
+// True when the entry's .vtk or its binary twin is a file.
+bool snapshotExists(const SnapshotEntry& e);
+
+// Throws InputError naming snap.file when a particle's radius or mass is not positive.
+void checkParticles(const ParticleSnapshot& snap);
 
 }  // namespace mixflow::mx

@@ -13,6 +13,7 @@ import math
 import os
 import re
 import shutil
+import struct
 
 POST = "postProcessing"
 DEM_SERIES = "postProcessing/dem/timeSeries.csv"  # particle counts, granular front, energies
@@ -31,6 +32,58 @@ SERIES = {"dem": DEM_SERIES, "liquid": LIQUID_SERIES, "exchange": EXCHANGE}
 # coupled_N.restart): what copy_inputs leaves behind.
 OUTPUT_NAMES = (POST, "VTK", "dem", DONE, FAILED, "log.*", "previous-run.*", "processor*",
                 "resume.state", "restart_*", "coupled.resume.state", "coupled_*.restart")
+
+# Particle snapshots (the C++ twin is dem/SnapshotFiles.h: keep them consistent). Each one is
+# written twice at the same step: legacy VTK ASCII for ParaView (6 significant digits) and, with
+# demDict binarySnapshots on, LIGGGHTS' binary dump of the same columns, which mixflowExtract reads.
+SNAPSHOT_SERIES = "VTK/particles.vtk.series"  # ParaView index: names relative to VTK/, times
+SNAPSHOT_VTK = "VTK/particles/particles_{step}.vtk"
+SNAPSHOT_BIN = "VTK/particles/particles_{step}.bin"
+SNAPSHOT_COLUMNS = ("id", "type", "x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "omegax",
+                    "omegay", "omegaz", "radius", "mass", "c_pstress[1]", "c_pstress[2]",
+                    "c_pstress[3]", "c_pstress[4]", "c_pstress[5]", "c_pstress[6]")
+# Binary header (native byte order; little-endian on the machines mixflow runs on): step, natoms
+# (int64), triclinic (int32), boundary (6 int32), box lo/hi x y z (6 float64), columns, chunks
+# (int32); then per chunk (one per MPI rank): int32 count of values, that many float64, row-major.
+_BIN_HEAD = struct.Struct("<qqi6i6dii")
+
+
+def write_binary_snapshot(path, rows, step=0, chunks=1, box=(0, 1, 0, 1, 0, 1)):
+    """ROWS (n, len(SNAPSHOT_COLUMNS)) into PATH in the binary layout, split into CHUNKS rank
+    chunks as an MPI run writes them."""
+    import numpy as np
+    rows = np.ascontiguousarray(rows, dtype="<f8")
+    with open(path, "wb") as f:
+        f.write(_BIN_HEAD.pack(step, len(rows), 0, *[1] * 6, *box, rows.shape[1], chunks))
+        for part in np.array_split(rows, chunks):
+            f.write(struct.pack("<i", part.size))
+            f.write(part.tobytes())
+
+
+def binary_snapshot_chunks(path):
+    """The rank chunks of a binary snapshot, in file order: a list of (rows, columns) arrays."""
+    import numpy as np
+    with open(path, "rb") as f:
+        b = f.read()
+    head = _BIN_HEAD.unpack_from(b, 0)
+    natoms, triclinic, cols, chunks = head[1], head[2], head[-2], head[-1]
+    off = _BIN_HEAD.size + (24 if triclinic else 0)
+    parts = []
+    for _ in range(chunks):
+        (n,) = struct.unpack_from("<i", b, off)
+        parts.append(np.frombuffer(b, dtype="<f8", count=n, offset=off + 4).reshape(-1, cols))
+        off += 4 + 8 * n
+    if sum(len(p) for p in parts) != natoms or off != len(b):
+        raise ValueError(f"{path}: the chunks do not hold the header's {natoms} particles")
+    return parts
+
+
+def read_binary_snapshot(path):
+    """The rows (n, columns) of a binary snapshot, all chunks in file order."""
+    import numpy as np
+    parts = binary_snapshot_chunks(path)
+    return np.vstack(parts) if parts else np.zeros((0, len(SNAPSHOT_COLUMNS)))
+
 
 # Column names the scripts read.
 TIME = "time_s"
