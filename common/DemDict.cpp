@@ -100,6 +100,11 @@ Schema makeSchema() {
           scalarParam("settle.checkpointInterval", s.checkpointInterval, Range::nonNegative(), "s",
                       "of settling between checkpoints (0: none): an interrupted settle continues "
                       "from the last to the sample an uninterrupted one gives; Allrun keeps it"),
+          wordParam("settle.gravity", s.gravity, {"full", "buoyant"},
+                    "**Open choice** (sample preparation, mixtures): the grains settle dry under g "
+                    "(full), or under their buoyant weight g (1 − ρ_f/ρ_s) (buoyant), so that the "
+                    "saturated column starts with the contact forces it keeps in the liquid; dry "
+                    "scenes: full"),
       });
 }
 
@@ -112,6 +117,7 @@ void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
   s.relaxTime = sc.scalar(d, "settle.relaxTime");
   s.seed = sc.integer(d, "settle.seed");
   s.checkpointInterval = sc.scalar(d, "settle.checkpointInterval");
+  s.gravity = sc.word(d, "settle.gravity");
 }
 
 void readProcessors(const Schema& sc, const Dictionary& d, std::string& grid) {

@@ -20,6 +20,9 @@ struct SettleSpec {
   long seed = 12345;
   // s of settling between checkpoints (dem/SettleCheckpoint.h); 0: none
   double checkpointInterval = 0;
+  // full: the grains settle under g; buoyant (mixtures): under g (1 - rho_f / rho_s), the weight
+  // they keep once saturated, so that adding the liquid does not unload their contacts.
+  std::string gravity = "full";
 };
 
 struct DemSpec {

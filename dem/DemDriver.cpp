@@ -95,6 +95,7 @@ SettleReport DemDriver::settle() {
   // off while settling: a constant rolling torque chatters at rest and keeps the sample from
   // settling.
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+  lig_->commands(settleGravityCommands(s));
 
   const double m = s.particles.mass(), d = s.particles.diameter;
   const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dt_));

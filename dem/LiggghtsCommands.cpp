@@ -123,6 +123,12 @@ std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bo
 }
 }  // namespace
 
+std::vector<std::string> settleGravityCommands(const Scene& s) {
+  if (s.settle.gravity != "buoyant" || s.fluidDensity <= 0) return {};
+  const double g = 9.81 * (1.0 - s.fluidDensity / s.particles.density);
+  return {"unfix gravi", "fix gravi all gravity " + fmt(g) + " vector 0.0 -1.0 0.0"};
+}
+
 std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,
                                             double timeStep) {
   const bool periodic = s.channel.sideWalls == "periodic";

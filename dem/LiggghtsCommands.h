@@ -21,6 +21,10 @@ std::string contactSettings(bool limitForce);
 
 // fix property/global lines for the two atom types. Settling passes its own particle friction and
 // rolling friction (re-issuing a fix with the same ID replaces its values at the next run).
+// The settling's gravity (demDict settle.gravity): none for `full` or a dry scene; for `buoyant`
+// in a mixture, gravity replaced by g (1 - rho_f / rho_s).
+std::vector<std::string> settleGravityCommands(const Scene& s);
+
 std::vector<std::string> materialCommands(const ParticleMaterial& p, double youngModulusFactor,
                                           double particleFriction, double rollingFriction);
 

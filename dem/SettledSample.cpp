@@ -46,6 +46,7 @@ std::string settleInputs(const Scene& s) {
   addLines(out, sceneSetupCommands(s, kDataFileName, dt));
   out << "# settling materials\n";
   addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+  addLines(out, settleGravityCommands(s));  // nothing for full gravity: older samples still match
   out << "# settling: check every " << kSettleCheckInterval << " s, at most " << s.settle.maxTime
       << " s, until the mean kinetic energy < " << s.settle.kineticTolerance << " m g d\n";
   // A checkpoint's restart write re-runs LIGGGHTS' setup, which changes the trajectory at

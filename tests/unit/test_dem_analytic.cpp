@@ -3,8 +3,10 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <string>
 
 #include "ContactTimes.h"
+#include "LiggghtsCommands.h"
 #include "Observables.h"
 
 using namespace mixflow::dem;
@@ -89,6 +91,23 @@ TEST(Observables, EnergiesOfKnownParticles) {
   EXPECT_DOUBLE_EQ(e.kineticRotational, 0.5 * 0.4 * 2.0 * 0.01 * 100);
   EXPECT_DOUBLE_EQ(e.potential, 2.0 * 9.81 * 2);
   EXPECT_EQ(e.count, 1);
+}
+
+// demDict settle.gravity buoyant: a mixture's grains settle under g (1 - rho_f / rho_s); a dry
+// scene, and `full`, keep LIGGGHTS' g (no command, so older samples keep their fingerprint).
+TEST(SettleGravity, BuoyantWeightOfAMixtureOnly) {
+  Scene s;
+  s.particles.density = 2500;
+  s.fluidDensity = 1000;
+  EXPECT_TRUE(settleGravityCommands(s).empty());
+  s.settle.gravity = "buoyant";
+  const auto c = settleGravityCommands(s);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0], "unfix gravi");
+  const double g = std::stod(c[1].substr(std::string("fix gravi all gravity ").size()));
+  EXPECT_NEAR(g, 9.81 * 0.6, 1e-6);
+  s.fluidDensity = 0;  // dry
+  EXPECT_TRUE(settleGravityCommands(s).empty());
 }
 
 int main(int argc, char** argv) {
