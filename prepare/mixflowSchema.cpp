@@ -6,6 +6,7 @@
 //   mixflowSchema -update DOC   rewrites those blocks (the text around them is kept)
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,25 @@ std::string regenerate(const std::string& doc, std::vector<std::string>& stale,
   return out;
 }
 
+// Sections of a declared dictionary that no table shows: an entry added there would be missing
+// from the document without any block going stale.
+std::vector<std::string> unlisted() {
+  std::vector<std::string> out;
+  std::set<std::pair<const Schema*, std::string>> shown;
+  for (const auto& t : tables())
+    for (const auto& sec : t.sections) shown.insert({&t.schema, sec});
+  std::set<std::pair<const Schema*, std::string>> reported;
+  for (const auto& t : tables())
+    for (const auto& p : t.schema.params()) {
+      if (p.type == mixflow::Param::Type::Dict) continue;
+      const std::pair<const Schema*, std::string> key{&t.schema, p.section()};
+      if (shown.count(key) || !reported.insert(key).second) continue;
+      out.push_back(t.schema.file() + ": section '" + p.section() + "' (entry '" + p.path +
+                    "') is declared but shown in no table of mixflowSchema");
+    }
+  return out;
+}
+
 int usage() {
   std::cerr << "usage: mixflowSchema NAME | -check DOC | -update DOC\n  NAME:";
   for (const auto& t : tables()) std::cerr << " " << t.name;
@@ -87,6 +107,9 @@ int main(int argc, char** argv) {
     }
     if (args.size() != 2 || (args[0] != "-check" && args[0] != "-update")) return usage();
     const std::string& path = args[1];
+    const std::vector<std::string> hidden = unlisted();
+    for (const auto& h : hidden) std::cerr << h << "\n";
+    if (!hidden.empty()) return 1;
     std::vector<std::string> stale, missing;
     const std::string doc = mixflow::readTextFile(path);
     const std::string fresh = regenerate(doc, stale, missing);
