@@ -284,7 +284,7 @@ long Dictionary::integerOr(const std::string& key, long def, long lo, long hi) c
   return has(key) ? integer(key, lo, hi) : def;
 }
 
-static std::string joinWords(const std::vector<std::string>& w) {
+std::string joinWords(const std::vector<std::string>& w) {
   std::string s;
   for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
   return s;

@@ -26,6 +26,9 @@ std::string readTextFile(const std::string& path);
 // v with `precision` significant digits (messages, CSV, JSON, state files, LIGGGHTS commands).
 std::string formatNumber(double v, int precision = 10);
 
+// Words as the messages and docs list them: "a, b, c".
+std::string joinWords(const std::vector<std::string>& words);
+
 // Closed or open interval for a scalar entry; printed in error messages.
 struct Range {
   double lo;

@@ -161,12 +161,6 @@ bool contains(const std::vector<std::string>& v, const std::string& k) {
   return false;
 }
 
-std::string join(const std::vector<std::string>& w) {
-  std::string s;
-  for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
-  return s;
-}
-
 // The liquid's entries depend on its rheology; an entry of another rheology is named as such
 // (e.g. yieldStress for a Newtonian liquid), not just as "unknown".
 void readLiquid(const Schema& sc, const Dictionary& d, SceneProperties& s) {
@@ -175,8 +169,8 @@ void readLiquid(const Schema& sc, const Dictionary& d, SceneProperties& s) {
   const std::vector<std::string> allowed = sc.keys("liquid", r.model);
   for (const auto& k : d.keys())
     if (!contains(allowed, k) && contains(sc.keys("liquid"), k))
-      d.fail(k,
-             "is not a parameter of rheology " + r.model + "; its entries are: " + join(allowed));
+      d.fail(k, "is not a parameter of rheology " + r.model +
+                    "; its entries are: " + joinWords(allowed));
   d.allowOnly(allowed);
 
   r.density = sc.scalar(d, "liquid.density");

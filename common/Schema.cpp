@@ -41,12 +41,6 @@ Param make(std::string path, Param::Type type, std::string meaning) {
   return p;
 }
 
-std::string join(const std::vector<std::string>& w) {
-  std::string s;
-  for (size_t i = 0; i < w.size(); ++i) s += (i ? ", " : "") + w[i];
-  return s;
-}
-
 // Ranges as the docs write them: "> 0", "≥ 0", "any", else the interval.
 std::string docRange(const Range& r) {
   if (std::isinf(r.hi) && std::isinf(r.lo)) return "any";
@@ -65,7 +59,7 @@ std::string docAllowed(const Param& p) {
           "]";
       break;
     case Param::Type::Word:
-      s = join(p.words);
+      s = joinWords(p.words);
       break;
     case Param::Type::Switch:
       s = "on, off";

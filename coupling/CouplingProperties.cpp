@@ -11,12 +11,6 @@
 namespace mixflow::coupling {
 
 namespace {
-std::string joined(const std::vector<std::string>& words) {
-  std::string s;
-  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
-  return s;
-}
-
 Schema makeSchema() {
   const CouplingProperties c{};
   const MixflowProperties m{};
@@ -26,7 +20,7 @@ Schema makeSchema() {
   demScript.required = true;
   Param forceModels =
       textParam("forceModels", "",
-                "the forces on the grains, one or more of: " + joined(ForceModel::available()) +
+                "the forces on the grains, one or more of: " + joinWords(ForceModel::available()) +
                     " (each reads its `<model>Coeffs` block)");
   forceModels.required = true;
   std::vector<Param> params = {
@@ -95,7 +89,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   }
   if (p.forceModels.empty())
     d.fail("forceModels",
-           "lists no model; give one or more of: " + joined(ForceModel::available()));
+           "lists no model; give one or more of: " + joinWords(ForceModel::available()));
   p.voidFractionModel = sc.word(d, "voidFractionModel");
   p.interpolation = sc.word(d, "interpolation");
   p.sourceDistribution = sc.word(d, "sourceDistribution");
