@@ -30,10 +30,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 sys.dont_write_bytecode = True
-from mixflow import outputs  # noqa: E402
+from mixflow import foamdict, outputs  # noqa: E402
 from yield_stress_results import observables, settled_fraction  # noqa: E402
 
-SAMPLE_LENGTH = 0.9  # L (m), cases/W+P/constant/sceneProperties
 RUNOUT_RATIO = 2.0  # loose / dense runout, Rondon et al. 2011 (about)
 RATIO_MIN = 1.5  # the check: the loose column runs at least 1.5 x the dense one's runout
 
@@ -85,10 +84,12 @@ def main():
         with open(lam) as f:
             basal = json.load(f)["scenes"]["W&P"]["basal_pore_pressure"]
         obs = observables(run_dir)
+        sample = foamdict.read_dict(os.path.join(run_dir, "constant", "sceneProperties"))["sample"]
+        at, moving = released(run_dir)
         obs.update({"settled_sample_fraction": settled_fraction(run_dir),
-                    "runout_m": obs["granular_front_m"] - SAMPLE_LENGTH,
-                    "pe_released_J_at": released(run_dir)[0],
-                    "still_moving_at_end": released(run_dir)[1],
+                    "runout_m": obs["granular_front_m"] - float(sample["length"]),
+                    "pe_released_J_at": at,
+                    "still_moving_at_end": moving,
                     "basal_excess_Pa": {f"{r['t0']:.1f}-{r['t1']:.1f}": r["excess_Pa"]
                                         for r in basal},
                     "basal_hydrostatic_Pa": {f"{r['t0']:.1f}-{r['t1']:.1f}": r["hydrostatic_Pa"]
