@@ -592,23 +592,22 @@ def bulk_rows(sc, bulk):
         s, b = sc[n], bulk[n]
         if not b.done:
             continue
+        # An unfinished CFD-DEM scene has no series: its numbers come out None.
         items = [("Fr < 1 at x = %g m, t − t0 (s)" % SECTION_X, PAPER["subcritical"][n],
-                  subcritical(s)[1] if s.done else None, subcritical(b)[1])]
+                  subcritical(s)[1], subcritical(b)[1])]
         for t in (1.0, 3.0):
             items.append((f"liquid front at {t:g} s (m)", None,
-                          front_at(liquid_front(s) if s.done else None, t),
-                          front_at(liquid_front(b), t)))
+                          front_at(liquid_front(s), t), front_at(liquid_front(b), t)))
             items.append((f"granular front at {t:g} s (m); bulk: the mixture's front", None,
-                          front_at(granular_front(s) if s.done else None, t),
-                          front_at(liquid_front(b), t)))
+                          front_at(granular_front(s), t), front_at(liquid_front(b), t)))
         if n in PAPER["back_wall"]:
             for t, paper in zip((0.5, 1.0), PAPER["back_wall"][n]):
-                items.append((f"back-wall height at {t:g} s / H", paper,
-                              back_wall(s, t) if s.done else None, back_wall(b, t)))
+                items.append((f"back-wall height at {t:g} s / H", paper, back_wall(s, t),
+                              back_wall(b, t)))
         for q, paper, ours, model in items:
             rows.append({"scene": s.paper_name, "quantity": q, "paper": paper,
-                         "cfd_dem": ours, "cfd_dem_tier": s.tier if s.done else None,
-                         "bulk": model, "bulk_tier": b.tier})
+                         "cfd_dem": ours, "cfd_dem_tier": s.tier, "bulk": model,
+                         "bulk_tier": b.tier})
     return rows
 
 
