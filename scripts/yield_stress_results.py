@@ -81,9 +81,6 @@ VARIANTS = {
                      "mixflowProperties": {"continuityVoidfractionRate": "off"},
                      "sceneProperties": {"liquid": {"viscosityCap": "1e2"}}},
 }
-FILES = {"couplingProperties": "constant/couplingProperties",
-         "sceneProperties": "constant/sceneProperties",
-         "mixflowProperties": "constant/mixflowProperties"}
 
 
 def run(cmd, cwd=ROOT, env=None):
@@ -241,7 +238,7 @@ def variant(base, dst, edits):
     shutil.rmtree(dst, ignore_errors=True)
     outputs.copy_inputs(base, dst, keep=("dem",))
     for fkey, tree in edits.items():
-        path = os.path.join(dst, FILES[fkey])
+        path = os.path.join(dst, suite.FILES[fkey])
         if not os.path.exists(path):
             with open(path, "w") as f:
                 f.write("FoamFile { version 2.0; format ascii; class dictionary; "
