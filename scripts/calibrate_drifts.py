@@ -29,7 +29,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow.foamdict import DictError, edit_dict, format_dict, parse_dict  # noqa: E402
+from mixflow.foamdict import DictError, parse_dict, set_block_text  # noqa: E402
 from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
 
@@ -265,17 +265,11 @@ def bulk_properties_text(path, drifts, source, solid_fraction=None):
     set through foamdict.edit_dict: every other byte of an existing file stays as it is."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
     entries["source"] = '"' + source.replace('"', "'") + '"'
-    if not os.path.exists(path):
-        return HEADER + format_dict({"drifts": entries})
-    with open(path) as f:
-        text = f.read()
-    tree = parse_dict(text)  # DictError names the line
-    if "drifts" in tree and not isinstance(tree["drifts"], dict):
-        raise DictError("'drifts' is an entry, not a block")
-    if "drifts" not in tree:
-        return text + ("" if text.endswith("\n") or not text else "\n") + \
-            format_dict({"drifts": entries})
-    return edit_dict(text, {"drifts": entries})[0]
+    text = None
+    if os.path.exists(path):
+        with open(path) as f:
+            text = f.read()
+    return set_block_text(text, "drifts", entries, HEADER)
 
 
 def check_target(target):

@@ -239,6 +239,20 @@ def format_dict(tree, indent=0):
     return "".join(out)
 
 
+def set_block_text(text, block, entries, header):
+    """TEXT (None: a new file starting with HEADER) with the entries of BLOCK (a dict of value
+    strings) set through edit_dict; a missing BLOCK is appended, every other byte stays."""
+    if text is None:
+        return header + format_dict({block: entries})
+    tree = parse_dict(text)  # DictError names the line
+    if block in tree and not isinstance(tree[block], dict):
+        raise DictError(f"'{block}' is an entry, not a block")
+    if block not in tree:
+        return text + ("" if text.endswith("\n") or not text else "\n") + \
+            format_dict({block: entries})
+    return edit_dict(text, {block: entries})[0]
+
+
 def edit_file(path, overrides, **options):
     """edit_dict on the file PATH, written back; returns edit_dict's actions."""
     with open(path) as f:
