@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""The bulk model's speed against CFD-DEM on the same mixture scene, both measured in this run.
+"""The bulk model's speed against CFD-DEM on the same scene, both measured in this run.
 
-usage: bench/bulk_vs_cfddem.py [--scenes HB+P] [--work /tmp/mixflow-bench-bulk]
+usage: bench/bulk_vs_cfddem.py [--scenes HB+P,P] [--work /tmp/mixflow-bench-bulk]
                                [--bulk-cell-sizes tier,0.075] [--json results/bench/bulk_vs_cfddem.json]
 
-For each scene: the CFD-DEM run at the tier `reference` (settling, then mixflowCoupled), then the
-bulk model (mixflowBulkFoam) at the tier `bulk`, once per --bulk-cell-sizes entry (`tier`: the
+For each scene: the CFD-DEM run at the tier `reference` (settling, then mixflowCoupled; for the dry
+scene P the DEM alone, mixflowDem), then the bulk model (mixflowBulkFoam; P as its bulk twin
+cases/P-bulk) at the tier `bulk`, once per --bulk-cell-sizes entry (`tier`: the
 tier's own cell size; a number: `--set cfdDict.cellSize=` it), each through scripts/suite.py into
 WORK/<label>, one after the other. Measured per run: the solver's CPU time (its log's last
-ExecutionTime), the settling's wall time (CFD-DEM only), the suite's wall time, the simulated end
+ExecutionTime; mixflowDem: its collapse phase's CPU), the settling's wall time (CFD-DEM only), the suite's wall time, the simulated end
 time and the granular front at the end. Ratios: CFD-DEM solver CPU / bulk solver CPU, and the
 same with the settling added to the CFD-DEM side (what a user waits for). Target (issue of the bulk
 model): 100. The runs are kept in WORK (delete it to rerun from scratch; a finished run is not
@@ -41,6 +42,20 @@ def settle_wall(log):
     return wall
 
 
+BULK_TWIN = {"P": "P-bulk"}  # a dry scene's bulk model is its own case (air as the pore fluid)
+
+
+def collapse_cpu(log):
+    """mixflowDem's collapse-phase CPU time (s): its '[mixflowDem] collapse phase: ... CPU X s'."""
+    cpu = None
+    with open(log) as f:
+        for line in f:
+            m = re.search(r"^\[mixflowDem\] collapse phase: .*CPU ([0-9.eE+-]+) s", line)
+            if m:
+                cpu = float(m.group(1))
+    return cpu
+
+
 def end_state(case):
     """(simulated end time, granular front x) at the last output row: CFD-DEM's grains
     (postProcessing/dem/timeSeries.csv front_x_m), the bulk model's mixture on the bed
@@ -66,11 +81,13 @@ def run(label, scene, tier, work, sets):
     subprocess.run(cmd, check=True)
     wall = time.time() - t0
     case = os.path.join(work, label, scene)
-    solver = "mixflowCoupled" if os.path.isfile(os.path.join(case, "log.mixflowCoupled")) \
-        else "mixflowBulkFoam"
-    rec = {"label": label, "tier": tier, "set": sets, "solver": solver, "suite_wall_s": wall,
-           "solver_cpu_s": foamcase.last_execution_time(os.path.join(case, f"log.{solver}"))}
+    solver = next(s for s in ("mixflowCoupled", "mixflowBulkFoam", "mixflowDem")
+                  if os.path.isfile(os.path.join(case, f"log.{s}")))
     dem_log = os.path.join(case, "log.mixflowDem")
+    rec = {"label": label, "scene": scene, "tier": tier, "set": sets, "solver": solver,
+           "suite_wall_s": wall,
+           "solver_cpu_s": collapse_cpu(dem_log) if solver == "mixflowDem" else
+           foamcase.last_execution_time(os.path.join(case, f"log.{solver}"))}
     rec["settle_wall_s"] = settle_wall(dem_log) if os.path.isfile(dem_log) else None
     rec["simulated_s"], rec["granular_front_m"] = end_state(case)
     print(json.dumps(rec), flush=True)
@@ -91,7 +108,7 @@ def main():
         bulks = []
         for size in a.bulk_cell_sizes.split(","):
             sets = [] if size == "tier" else [f"cfdDict.cellSize={size}"]
-            b = run(f"{scene}-bulk-{size}", scene, "bulk", a.work, sets)
+            b = run(f"{scene}-bulk-{size}", BULK_TWIN.get(scene, scene), "bulk", a.work, sets)
             b["ratio_solver_cpu"] = ref["solver_cpu_s"] / b["solver_cpu_s"]
             b["ratio_with_settling"] = (ref["solver_cpu_s"] + (ref["settle_wall_s"] or 0)) / \
                 b["solver_cpu_s"]

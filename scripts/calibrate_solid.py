@@ -1,0 +1,186 @@
+#!/usr/bin/python3
+"""The bulk model's solid rheology calibrated on the dry collapse P (docs/calibration.md): a grid of
+the yield coefficient tanPhi and the solid viscosity nu_s, each run as cases/P-bulk (the column of
+P with air as its pore fluid), scored by the granular front against the DEM run of P.
+
+usage: /usr/bin/python3 scripts/calibrate_solid.py REFERENCE [--tan-phi 0.3,0.35,...]
+           [--viscosity 0.003,...,0.1] [--cell-size 0.075] [--times 0.25:3:0.25]
+           [--work runs/solid-calibration] [--target CASE ...] [--out FILE.json]
+
+REFERENCE: a finished DEM case of P (its postProcessing/dem/timeSeries.csv, column front_x_m; a
+run that stopped at arrest keeps its last front). Each grid point is the tier `bulk` case P-bulk
+at --cell-size (`suite.py --tier bulk --scenes P-bulk --set cfdDict.cellSize=...`, once) with
+`solid { tanPhi; viscosity; }` set in its constant/bulkProperties and run with ./Allrun. Score: the
+root mean square of the relative front error at --times. Writes OUT (JSON) and OUT with .csv (one
+row a grid point); with --target, the best point's solid.tanPhi and solid.viscosity go into each
+CASE/constant/bulkProperties (created if absent; nothing else changes). Bad input exits 2 before
+anything runs.
+"""
+
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow import foamcase, outputs  # noqa: E402
+from mixflow.foamdict import DictError, set_block_text  # noqa: E402
+
+SCENE = "P-bulk"
+HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
+
+
+class InputError(Exception):
+    """Bad input: the message names the file or option, the entry and the allowed range."""
+
+
+def numbers(text, option, low, high):
+    try:
+        vals = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise InputError(f"{option} {text}: not a comma-separated list of numbers") from None
+    bad = [v for v in vals if not low <= v <= high]
+    if not vals or bad:
+        raise InputError(f"{option} {text}: each value must lie in [{low}, {high}]")
+    return vals
+
+
+def time_list(text):
+    try:
+        t0, t1, dt = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise InputError(f"--times {text}: not T0:T1:DT") from None
+    if not (0 < t0 <= t1 and dt > 0):
+        raise InputError(f"--times {text}: needs 0 < T0 <= T1 and DT > 0")
+    return [round(t0 + i * dt, 10) for i in range(int(math.floor((t1 - t0) / dt + 1e-9)) + 1)]
+
+
+def reference_front(case, times):
+    """The DEM front at TIMES (held at its last value after the run's end)."""
+    path = os.path.join(case, outputs.DEM_SERIES)
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file (REFERENCE is a finished DEM case of P)")
+    rows = outputs.read_series(path, comments=True)
+    if not rows or outputs.GRANULAR_FRONT not in rows[0]:
+        raise InputError(f"{path}: no rows with column {outputs.GRANULAR_FRONT}")
+    end = rows[-1][outputs.TIME]
+    return {t: outputs.interpolated(rows, outputs.GRANULAR_FRONT, min(t, end)) for t in times}, end
+
+
+def run(cmd, cwd=None):
+    env = dict(os.environ, MIXFLOW_ROOT=ROOT)
+    env["PATH"] = os.path.join(os.path.abspath(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))),
+                               "bin") + os.pathsep + env.get("PATH", "")
+    r = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"calibrate_solid: {' '.join(cmd)} failed (exit {r.returncode}):\n"
+                 f"{r.stdout[-2000:]}{r.stderr[-2000:]}")
+
+
+def solid_text(case, tan_phi, viscosity):
+    """CASE's constant/bulkProperties (path, text) with solid.tanPhi and solid.viscosity set."""
+    path = os.path.join(case, "constant", "bulkProperties")
+    text = None
+    if os.path.exists(path):
+        with open(path) as f:
+            text = f.read()
+    try:
+        return path, set_block_text(text, "solid", {"tanPhi": f"{tan_phi:g}",
+                                                    "viscosity": f"{viscosity:g}"}, HEADER)
+    except DictError as e:
+        raise InputError(f"{path}: {e}") from None
+
+
+def set_solid(case, tan_phi, viscosity):
+    path, text = solid_text(case, tan_phi, viscosity)
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def score(case, ref, times):
+    rows = outputs.series(case)
+    end = rows[-1][outputs.TIME]
+    fronts = {t: outputs.interpolated(rows, outputs.LIQUID_FRONT, min(t, end)) for t in times}
+    errors = [fronts[t] / ref[t] - 1 for t in times]
+    return {"fronts_m": [fronts[t] for t in times], "errors": errors,
+            "rms_error": math.sqrt(sum(e * e for e in errors) / len(errors)),
+            "final_error": errors[-1],
+            "solver_cpu_s": foamcase.last_execution_time(os.path.join(case, "log.mixflowBulkFoam"))}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("reference")
+    ap.add_argument("--tan-phi", default="0.3,0.35,0.4,0.45,0.5,0.55,0.6,0.7,0.8,0.9")
+    ap.add_argument("--viscosity", default="0.003,0.01,0.02,0.03,0.05,0.1")
+    ap.add_argument("--cell-size", default="0.075")
+    ap.add_argument("--times", default="0.25:3:0.25")
+    ap.add_argument("--work", default=os.path.join(ROOT, "runs", "solid-calibration"))
+    ap.add_argument("--target", action="append", default=[])
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model",
+                                                  "solid_calibration.json"))
+    a = ap.parse_args()
+    try:
+        tan_phis = numbers(a.tan_phi, "--tan-phi", 0, 5)  # bulkProperties solid.tanPhi's range
+        viscosities = numbers(a.viscosity, "--viscosity", 1e-9, 1e3)
+        cell = numbers(a.cell_size, "--cell-size", 1e-3, 0.3)[0]
+        times = time_list(a.times)
+        ref, ref_end = reference_front(a.reference, times)
+        for t in a.target:
+            if not os.path.isdir(os.path.join(t, "constant")):
+                raise InputError(f"--target {t}: no constant/ directory (a case directory)")
+            solid_text(t, 0.5, 0.01)  # an unreadable bulkProperties stops here, before any run
+    except InputError as e:
+        print(f"calibrate_solid: {e}", file=sys.stderr)
+        return 2
+
+    base = os.path.join(a.work, "base", SCENE)
+    if not os.path.isfile(os.path.join(base, outputs.DONE)):
+        run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
+             "--scenes", SCENE, "--work", os.path.dirname(base), "--set",
+             f"cfdDict.cellSize={cell:g}"])
+    grid = []
+    for tp in tan_phis:
+        for nu in viscosities:
+            case = os.path.join(a.work, f"tanPhi{tp:g}_nu{nu:g}")
+            if not os.path.isfile(os.path.join(case, outputs.DONE)):
+                if os.path.isdir(case):
+                    sys.exit(f"calibrate_solid: {case} exists unfinished: remove it to rerun")
+                outputs.copy_inputs(base, case)
+                set_solid(case, tp, nu)
+                run(["./Allrun", "1"], cwd=case)
+                open(os.path.join(case, outputs.DONE), "w").close()
+            rec = {"tan_phi": tp, "viscosity_m2_s": nu, **score(case, ref, times)}
+            grid.append(rec)
+            print(f"tanPhi {tp:g} nu_s {nu:g}: rms front error {100 * rec['rms_error']:.1f} %, "
+                  f"at {times[-1]:g} s {100 * rec['final_error']:+.1f} %", flush=True)
+    best = min(grid, key=lambda r: r["rms_error"])
+    out = {"command": "/usr/bin/python3 scripts/calibrate_solid.py " + " ".join(sys.argv[1:]),
+           "reference": os.path.relpath(os.path.abspath(a.reference), ROOT), "reference_end_s": ref_end,
+           "cell_size_m": cell, "times_s": times, "reference_front_m": [ref[t] for t in times],
+           "score": "rms of front_bulk / front_dem - 1 over times_s",
+           "best": {k: best[k] for k in ("tan_phi", "viscosity_m2_s", "rms_error", "final_error")},
+           "grid": grid}
+    outputs.write_json(a.out, out)
+    with open(os.path.splitext(a.out)[0] + ".csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["tan_phi", "viscosity_m2_s", "rms_error", "solver_cpu_s"]
+                   + [f"front_m_t{t:g}" for t in times])
+        w.writerow(["dem", "", "", ""] + [f"{ref[t]:.4f}" for t in times])
+        for r in grid:
+            w.writerow([r["tan_phi"], r["viscosity_m2_s"], f"{r['rms_error']:.4f}",
+                        r["solver_cpu_s"]] + [f"{v:.4f}" for v in r["fronts_m"]])
+    for t in a.target:
+        set_solid(t, best["tan_phi"], best["viscosity_m2_s"])
+    print(f"best: tanPhi {best['tan_phi']:g}, nu_s {best['viscosity_m2_s']:g} m2/s, rms front "
+          f"error {100 * best['rms_error']:.1f} %; wrote {a.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
