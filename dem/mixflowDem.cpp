@@ -3,7 +3,7 @@
 //   mpirun -np N mixflowDem -case DIR -parallel
 // -check validates the case and prints the derived time step, then stops.
 // -settleOnly settles the sample and saves it (dem/settled.restart, dem/settled.state): the first
-// step of a mixture scene, whose collapse runs in mixflowCoupled (scripts/LiquidRunFunctions).
+// step of a mixture scene, whose collapse runs in mixflowCoupled (a mixture case's Allrun).
 // -settleOnly -reuse DIR takes the sample settled in DIR (another run's dem/) instead, when it was
 // made from this case's settling inputs (dem/SettledSample.h); otherwise it stops and says why.
 #include <mpi.h>

@@ -267,11 +267,11 @@ def make_copy(scene, run_dir, tier, texts, records, content):
 
 def liquid_restart_time(run_dir, ranks):
     """Latest complete field write of an interrupted liquid run, else None: the one
-    resumeLiquidCase continues from (asked of the same shell function, _latestLiquidWrite)."""
+    resumeLiquidCase continues from (asked of the same shell function, latestLiquidWrite)."""
     if not os.path.isfile(os.path.join(run_dir, "log.mixflowFoam")):
         return None
-    out = subprocess.run(["bash", "-c", '. "$1" && _latestLiquidWrite "$2"', "LiquidRunFunctions",
-                          os.path.join(ROOT, "scripts", "LiquidRunFunctions"), str(ranks)],
+    out = subprocess.run(["bash", "-c", '. "$1" && latestLiquidWrite "$2"', "RunFunctions",
+                          os.path.join(ROOT, "scripts", "RunFunctions"), str(ranks)],
                          cwd=run_dir, capture_output=True, text=True).stdout.strip()
     return out or None
 

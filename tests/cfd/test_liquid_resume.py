@@ -6,7 +6,7 @@ usage: test_liquid_resume.py ROOT BINDIR WORKDIR [RANKS]
 
 The scene is the outflow check of run_liquid_cases.py: a 0.1 x 0.1 m water column in an open
 0.3 x 0.15 m channel, 2-D, 5 mm cells, writes every 0.1 s. Run A goes to 0.4 s uninterrupted
-(runLiquidCase, as ./Allrun does). Run B is started for 1 s and its mixflowFoam is killed
+(through a liquid case's Allrun, cases/W/Allrun). Run B is started for 1 s and its mixflowFoam is killed
 (SIGKILL, a crash) once its first field write is complete; B also gets a half-written later time
 directory and a row after the write in each series. Then B's endTime is set to 0.4 s and
 `resumeLiquidCase RANKS` continues it. Checks:
@@ -63,11 +63,15 @@ def make(name, end):
     for rel, text in files.items():
         with open(os.path.join(d, rel), "w") as f:
             f.write(HDR % os.path.basename(rel) + text)
+    shutil.copy(os.path.join(root, "cases", "W", "Allrun"), d)
     return d
 
 
 def shell(fn, d):
-    return subprocess.Popen(["bash", "-c", f'. "{root}/scripts/{fn[0]}" && {fn[1]} {ranks}'], cwd=d,
+    """FN: ALLRUN, the case's ./Allrun RANKS; or (FILE, FUNCTION), FUNCTION RANKS of scripts/FILE."""
+    cmd = (["bash", os.path.join(d, "Allrun"), str(ranks)] if fn == ALLRUN else
+           ["bash", "-c", f'. "{root}/scripts/{fn[0]}" && {fn[1]} {ranks}'])
+    return subprocess.Popen(cmd, cwd=d,
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
@@ -105,16 +109,16 @@ def kill_solver(case):
     return killed
 
 
-LIQ = ("LiquidRunFunctions", "runLiquidCase")
+ALLRUN = "Allrun"
 a, b = make("a", 0.4), make("b", 1.0)
-rc, out = run(LIQ, a)
+rc, out = run(ALLRUN, a)
 if rc != 0:
     sys.exit("run A failed:\n" + out[-3000:])
 check(re.search(r"^\[liquid a\] t = 0\.4000 s of 0\.4000 s \(100\.0 %\), wall \d\d:\d\d:\d\d, "
                 r"to finish", out, re.M) is not None,
       "the run shows mixflowFoam's progress line (simulated time, wall, estimate to finish)")
 
-proc = shell(LIQ, b)
+proc = shell(ALLRUN, b)
 deadline = time.time() + 300
 while first_write_done(b) is None and proc.poll() is None and time.time() < deadline:
     time.sleep(0.02)

@@ -11,8 +11,8 @@ about 0.7 s):
      from the checkpoint, and its settled sample (settled.state, settled.restart) is A's byte for
      byte (one rank: LIGGGHTS restarts reproduce the trajectory exactly);
   3. a checkpoint of other settling inputs (settle.friction changed) is reported and not used;
-  4. `runDemCase` (what a dry case's Allrun runs) keeps a checkpoint when it moves the previous
-     outputs aside, continues the settle from it and finishes the collapse.
+  4. a dry case's Allrun (cases/P/Allrun) keeps a checkpoint when it moves the previous outputs
+     aside, continues the settle from it and finishes the collapse.
 """
 import filecmp
 import os
@@ -106,13 +106,14 @@ check("a checkpoint of other settling inputs" in out and "settling continues" no
 d = os.path.join(work, "d")
 shutil.rmtree(d, ignore_errors=True)
 shutil.copytree(os.path.join(work, "b2"), d)  # the killed B2: its checkpoint in dem/
-r = subprocess.run(["bash", "-c", f'. "{root}/scripts/RunFunctions" && runDemCase 1'], cwd=d,
-                   capture_output=True, text=True, env=env)
+shutil.copy(os.path.join(root, "cases", "P", "Allrun"), d)
+r = subprocess.run(["bash", os.path.join(d, "Allrun"), "1"], cwd=d, capture_output=True, text=True,
+                   env=env)
 log = open(os.path.join(d, "log.mixflowDem")).read() if os.path.isfile(
     os.path.join(d, "log.mixflowDem")) else ""
 check(r.returncode == 0 and "settling continues from its checkpoint" in log and
       os.path.isfile(os.path.join(d, "postProcessing", "dem", "summary.json")),
-      f"runDemCase keeps the checkpoint, continues the settle and finishes (exit {r.returncode})")
+      f"the dry Allrun keeps the checkpoint, continues the settle and finishes (exit {r.returncode})")
 if r.returncode != 0:
     print(r.stdout[-2000:], r.stderr[-2000:])
 
