@@ -28,7 +28,7 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import foamdict, outputs  # noqa: E402
+from mixflow import foamcase, foamdict, outputs  # noqa: E402
 
 SCENE_NAMES = {"P-quick": "P", "W+P-quick": "W&P", "P": "P", "W+P": "W&P"}
 
@@ -42,9 +42,7 @@ def run_case(scene, ranks, work, tag, balance):
         foamdict.edit_file(os.path.join(case, "system", "demDict"),
                            {"balanceInterval": str(balance), "processors": '"* 1 1"'},
                            note="bench/scaling.py")
-    env = dict(os.environ, MIXFLOW_ROOT=ROOT)
-    env["PATH"] = os.path.join(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")),
-                               "bin") + os.pathsep + env["PATH"]
+    env = foamcase.run_env()
     t0 = time.perf_counter()
     with open(os.path.join(case, "log.Allrun"), "w") as log:
         res = subprocess.run(["./Allrun", str(ranks)], cwd=case, env=env, stdout=log,

@@ -1,12 +1,15 @@
 #!/usr/bin/python3
-"""The bulk model at two calibration stages against the CFD-DEM reference, per mixture scene.
+"""The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--reference runs/reference] [--work runs/bulk-stages] [--out results/bulk_model/stages.json]
+          [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
+          [--out results/bulk_model/stages.json]
 
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
-cfdDict.cellSize=...`) run as it is (stage A: lambda = 1, the default solid rheology), then the same
-case with the constant drifts calibrated from the CFD-DEM reference run's extraction (stage B:
+cfdDict.cellSize=...`) run as it is (stage A0: lambda = 1, the default solid rheology); the same
+case with the solid block of --solid-from's constant/bulkProperties (stage A: lambda = 1, the solid
+rheology calibrated on the dry scene P by scripts/calibrate_solid.py); then stage A's case with
+the constant drifts calibrated from the CFD-DEM reference run's extraction (stage B:
 `scripts/calibrate_drifts.py REFERENCE/<scene> --target CASE --flowing-factor F`, weighted least
 squares; the
 reference run needs postProcessing/mixture/mixture.h5, e.g. from scripts/mixture_lambdas.py) and
@@ -25,14 +28,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import foamcase, outputs  # noqa: E402
-
-
-def env():
-    e = dict(os.environ, MIXFLOW_ROOT=ROOT)
-    e["PATH"] = os.path.join(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")),
-                             "bin") + os.pathsep + e.get("PATH", "")
-    return e
+from mixflow import bulkprops, foamcase, outputs  # noqa: E402
 
 
 def last(path, column):
@@ -44,7 +40,7 @@ def last(path, column):
 def run(cmd, cwd=None, fatal=True):
     """Runs CMD; its output, or (not fatal) None after printing why it failed."""
     print("+ " + " ".join(cmd), flush=True)
-    r = subprocess.run(cmd, cwd=cwd, env=env(), capture_output=True, text=True)
+    r = subprocess.run(cmd, cwd=cwd, env=foamcase.run_env(), capture_output=True, text=True)
     if r.returncode != 0:
         msg = f"bulk_stages: {' '.join(cmd)} failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}"
         if fatal:
@@ -61,6 +57,14 @@ def result(case, ref_front):
                 os.path.join(case, "log.mixflowBulkFoam"))}
 
 
+def fresh_copy(src, dst):
+    """DST (removed first) with the inputs of the case SRC."""
+    shutil.rmtree(dst, ignore_errors=True)
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    outputs.copy_inputs(src, dst)
+    return dst
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -70,39 +74,52 @@ def main():
                     help="calibrate_drifts.py --flowing-factor: 0.02 sqrt(g H) = 0.049 m/s, the "
                     "flowing rule of results/yield_stress/lambdas.json (|u_s| >= 0.05 m/s)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
+    ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model", "stages.json"))
     a = ap.parse_args()
+    try:
+        solid = bulkprops.read(a.solid_from).get("solid")
+    except bulkprops.DictError as e:
+        sys.exit(f"bulk_stages: {bulkprops.path(a.solid_from)}: {e}")
+    if not isinstance(solid, dict) or not solid:
+        sys.exit(f"bulk_stages: --solid-from {a.solid_from}: {bulkprops.path(a.solid_from)} has no "
+                 "solid { ... } block (scripts/calibrate_solid.py --target writes one)")
     out = {"command": "/usr/bin/python3 scripts/bulk_stages.py " + " ".join(sys.argv[1:]),
-           "cell_size_m": float(a.cell_size), "scenes": {}}
+           "cell_size_m": float(a.cell_size), "solid": solid,
+           "solid_from": os.path.relpath(os.path.abspath(a.solid_from), ROOT), "scenes": {}}
     for scene in a.scenes.split(","):
         ref = os.path.join(a.reference, scene)
         t_ref, ref_front = last(os.path.join(ref, "postProcessing", "dem", "timeSeries.csv"),
                                 "front_x_m")
-        work = os.path.join(a.work, "A")
+        work = os.path.join(a.work, "A0")
         shutil.rmtree(os.path.join(work, scene), ignore_errors=True)
         run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
              "--scenes", scene, "--work", work, "--set", f"cfdDict.cellSize={a.cell_size}"])
-        case_a = os.path.join(work, scene)
-        rec = {"cfd_dem_front_m": ref_front, "cfd_dem_time_s": t_ref, "A": result(case_a, ref_front)}
-        case_b = os.path.join(a.work, "B", scene)
-        shutil.rmtree(case_b, ignore_errors=True)
-        os.makedirs(os.path.dirname(case_b), exist_ok=True)
-        outputs.copy_inputs(case_a, case_b)
+        case_a0 = os.path.join(work, scene)
+        rec = {"cfd_dem_front_m": ref_front, "cfd_dem_time_s": t_ref,
+               "A0": result(case_a0, ref_front)}
+        case_a = fresh_copy(case_a0, os.path.join(a.work, "A", scene))
+        bulkprops.write_text(bulkprops.path(case_a), bulkprops.block_text(case_a, "solid", solid))
+        run(["./Allrun", "1"], cwd=case_a)
+        rec["A"] = result(case_a, ref_front)
+        case_b = fresh_copy(case_a, os.path.join(a.work, "B", scene))
         cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
                    "--target", case_b, "--flowing-factor", a.flowing_factor], fatal=False)
         out["scenes"][scene] = rec
         if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
             rec["B"] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
-            print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A {rec['A']['front_m']:.3f} m "
-                  f"({100 * rec['A']['front_error']:+.0f} %); stage B not run", flush=True)
+            print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
+                  f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); "
+                  "stage B not run", flush=True)
             continue
         rec["B_calibration"] = cal.strip().splitlines()[-12:]
         with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
             rec["B_drifts"] = json.load(f)
         run(["./Allrun", "1"], cwd=case_b)
         rec["B"] = result(case_b, ref_front)
-        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A {rec['A']['front_m']:.3f} m "
+        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
+              f"A {rec['A']['front_m']:.3f} m "
               f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
               f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU {rec['A']['solver_cpu_s']} / "
               f"{rec['B']['solver_cpu_s']} s", flush=True)

@@ -29,6 +29,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from mixflow.bulkprops import HEADER, write_text  # noqa: E402
 from mixflow.foamdict import DictError, parse_dict, set_block_text  # noqa: E402
 from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
@@ -40,7 +41,6 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
           "lambda_p": ("lambdaP", "lambda_p_density", "p_s / rho_s", "p_f / rho_f")}
 ESTIMATORS = ("wls", "median")
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
-HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
 # prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
 # cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
 DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
@@ -322,10 +322,7 @@ def write_target(target, res, source_arg, json_path=None):
     res = dict(res, bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
     for p, body in ((path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")):
-        tmp = p + ".tmp"  # renamed over the file: an interrupted write leaves the old one intact
-        with open(tmp, "w") as f:
-            f.write(body)
-        os.replace(tmp, p)
+        write_text(p, body)
     return path, json_path
 
 

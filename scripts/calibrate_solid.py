@@ -26,11 +26,9 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import foamcase, outputs  # noqa: E402
-from mixflow.foamdict import DictError, set_block_text  # noqa: E402
+from mixflow import bulkprops, foamcase, outputs  # noqa: E402
 
 SCENE = "P-bulk"
-HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
 
 
 class InputError(Exception):
@@ -71,34 +69,27 @@ def reference_front(case, times):
 
 
 def run(cmd, cwd=None):
-    env = dict(os.environ, MIXFLOW_ROOT=ROOT)
-    env["PATH"] = os.path.join(os.path.abspath(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))),
-                               "bin") + os.pathsep + env.get("PATH", "")
-    r = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    r = subprocess.run(cmd, cwd=cwd, env=foamcase.run_env(), capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"calibrate_solid: {' '.join(cmd)} failed (exit {r.returncode}):\n"
                  f"{r.stdout[-2000:]}{r.stderr[-2000:]}")
 
 
+def solid_entries(tan_phi, viscosity):
+    return {"tanPhi": f"{tan_phi:g}", "viscosity": f"{viscosity:g}"}
+
+
 def solid_text(case, tan_phi, viscosity):
     """CASE's constant/bulkProperties (path, text) with solid.tanPhi and solid.viscosity set."""
-    path = os.path.join(case, "constant", "bulkProperties")
-    text = None
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
     try:
-        return path, set_block_text(text, "solid", {"tanPhi": f"{tan_phi:g}",
-                                                    "viscosity": f"{viscosity:g}"}, HEADER)
-    except DictError as e:
-        raise InputError(f"{path}: {e}") from None
+        return bulkprops.path(case), bulkprops.block_text(case, "solid",
+                                                          solid_entries(tan_phi, viscosity))
+    except bulkprops.DictError as e:
+        raise InputError(f"{bulkprops.path(case)}: {e}") from None
 
 
 def set_solid(case, tan_phi, viscosity):
-    path, text = solid_text(case, tan_phi, viscosity)
-    with open(path + ".tmp", "w") as f:
-        f.write(text)
-    os.replace(path + ".tmp", path)
+    bulkprops.write_text(*solid_text(case, tan_phi, viscosity))
 
 
 def score(case, ref, times):

@@ -28,12 +28,6 @@ from mixflow import outputs  # noqa: E402
 G = 9.81
 
 
-def env():
-    e = dict(os.environ, MIXFLOW_ROOT=ROOT, WM_PROJECT_DIR=os.environ.get(
-        "WM_PROJECT_DIR", "/usr/share/openfoam"))
-    e["PATH"] = os.path.join(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")),
-                             "bin") + os.pathsep + e.get("PATH", "")
-    return e
 
 
 def back_wall_column(case):
@@ -90,7 +84,7 @@ def main():
         sys.exit(f"{path}: expected 'internalField uniform 0;'")
     open(path, "w").write(text)
     with open(os.path.join(hyd, "log.mixflowCoupled"), "w") as log:
-        r = subprocess.run(["mixflowCoupled", "-case", "."], cwd=hyd, env=env(), stdout=log,
+        r = subprocess.run(["mixflowCoupled", "-case", "."], cwd=hyd, env=fc.run_env(), stdout=log,
                            stderr=subprocess.STDOUT)
     if r.returncode != 0 or "End" not in open(os.path.join(hyd, "log.mixflowCoupled")).read():
         sys.exit(f"{hyd}: mixflowCoupled failed (log.mixflowCoupled)")

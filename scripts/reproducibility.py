@@ -30,7 +30,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
-from mixflow import foamdict, outputs  # noqa: E402
+from mixflow import foamcase, foamdict, outputs  # noqa: E402
 
 PERTURBATION = 1e-12
 QUANTITIES = {"granular_front_m": ("dem", "front_x_m"),
@@ -56,9 +56,7 @@ def make_case(work, scene, label, density_factor=1.0):
 
 
 def allrun(case, ranks, settled=None):
-    env = dict(os.environ, MIXFLOW_ROOT=ROOT)
-    env["PATH"] = os.path.join(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")),
-                               "bin") + os.pathsep + env.get("PATH", "")
+    env = foamcase.run_env()
     cmd = ["./Allrun", str(ranks)] + ([settled] if settled else [])
     print(f"+ (cd {case} && {' '.join(cmd)})", flush=True)
     with open(os.path.join(case, "log.reproducibility"), "w") as log:

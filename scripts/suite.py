@@ -32,6 +32,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import outputs  # noqa: E402
+from mixflow.foamcase import run_env  # noqa: E402
 from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: E402,F401
                               leaves, list_value, parse_dict, read_dict, unquote)
 from mixflow.paper import D_P, TABLE1  # noqa: E402
@@ -355,15 +356,6 @@ def _plan_scene(scene, work, tier, ranks):
     except (DictError, OSError, KeyError) as e:
         p["status"], p["error"] = "error", str(e)
     return p
-
-
-def run_env():
-    env = dict(os.environ)
-    build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
-    env["PATH"] = os.path.join(build, "bin") + os.pathsep + env.get("PATH", "")
-    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
-    env["MIXFLOW_ROOT"] = ROOT  # the cases' Allrun find scripts/ there (copies live elsewhere)
-    return env
 
 
 def resume_command(content, ranks):

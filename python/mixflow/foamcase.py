@@ -12,7 +12,18 @@ import shutil
 import subprocess
 import sys
 
-from . import foamdict
+from . import ROOT, foamdict
+
+
+def run_env():
+    """The environment a case's Allrun runs in: the build's bin/ ($MIXFLOW_BUILD or build/) first
+    on PATH, MIXFLOW_ROOT (where a copied case finds scripts/), OpenFOAM's WM_PROJECT_DIR."""
+    env = dict(os.environ)
+    build = os.path.abspath(os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")))
+    env["PATH"] = os.path.join(build, "bin") + os.pathsep + env.get("PATH", "")
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    env["MIXFLOW_ROOT"] = ROOT
+    return env
 
 
 def fail(msg):
