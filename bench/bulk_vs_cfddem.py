@@ -20,7 +20,6 @@ import argparse
 import csv
 import json
 import os
-import re
 import subprocess
 import sys
 import time
@@ -32,14 +31,11 @@ from mixflow import foamcase, outputs  # noqa: E402
 
 def settle_wall(log):
     """The settling's wall time (s) from mixflowDem's last '[settle] ... wall hh:mm:ss' line."""
-    wall = None
-    with open(log) as f:
-        for line in f:
-            m = re.search(r"^\[settle\].*wall (\d+):(\d+):(\d+)", line)
-            if m:
-                h, mi, s = (int(g) for g in m.groups())
-                wall = 3600 * h + 60 * mi + s
-    return wall
+    m = foamcase.last_match(log, r"\[settle\].*wall (\d+):(\d+):(\d+)")
+    if not m:
+        return None
+    h, mi, s = (int(g) for g in m.groups())
+    return 3600 * h + 60 * mi + s
 
 
 BULK_TWIN = {"P": "P-bulk"}  # a dry scene's bulk model is its own case (air as the pore fluid)
@@ -47,13 +43,8 @@ BULK_TWIN = {"P": "P-bulk"}  # a dry scene's bulk model is its own case (air as 
 
 def collapse_cpu(log):
     """mixflowDem's collapse-phase CPU time (s): its '[mixflowDem] collapse phase: ... CPU X s'."""
-    cpu = None
-    with open(log) as f:
-        for line in f:
-            m = re.search(r"^\[mixflowDem\] collapse phase: .*CPU ([0-9.eE+-]+) s", line)
-            if m:
-                cpu = float(m.group(1))
-    return cpu
+    m = foamcase.last_match(log, r"\[mixflowDem\] collapse phase: .*CPU ([0-9.eE+-]+) s")
+    return float(m.group(1)) if m else None
 
 
 def end_state(case):

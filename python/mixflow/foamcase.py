@@ -94,15 +94,20 @@ def time_dirs(case):
     return sorted(out)
 
 
-def last_execution_time(log):
-    """The last 'ExecutionTime = X s' of an OpenFOAM solver log (CPU seconds), or None."""
-    t = None
+def last_match(log, pattern):
+    """The match of PATTERN (re.match: from a line's start) on the last line of LOG it matches,
+    or None: the final figure of a quantity a program prints as it goes."""
+    last = None
     with open(log) as f:
         for line in f:
-            m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s", line)
-            if m:
-                t = float(m.group(1))
-    return t
+            last = re.match(pattern, line) or last
+    return last
+
+
+def last_execution_time(log):
+    """The last 'ExecutionTime = X s' of an OpenFOAM solver log (CPU seconds), or None."""
+    m = last_match(log, r"ExecutionTime = ([0-9.eE+-]+) s")
+    return float(m.group(1)) if m else None
 
 
 def latest_time(case):
