@@ -100,7 +100,8 @@ def main():
         rec = {"cfd_dem_front_m": ref_front, "cfd_dem_time_s": t_ref,
                "A0": result(case_a0, ref_front)}
         case_a = fresh_copy(case_a0, os.path.join(a.work, "A", scene))
-        bulkprops.write_text(bulkprops.path(case_a), bulkprops.block_text(case_a, "solid", solid))
+        p = bulkprops.path(case_a)
+        bulkprops.write_text(p, bulkprops.block_text(p, "solid", solid))
         run(["./Allrun", "1"], cwd=case_a)
         rec["A"] = result(case_a, ref_front)
         case_b = fresh_copy(case_a, os.path.join(a.work, "B", scene))

@@ -29,8 +29,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow.bulkprops import HEADER, write_text  # noqa: E402
-from mixflow.foamdict import DictError, parse_dict, set_block_text  # noqa: E402
+from mixflow import bulkprops  # noqa: E402
+from mixflow.foamdict import DictError, parse_dict  # noqa: E402
 from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
 
@@ -265,11 +265,7 @@ def bulk_properties_text(path, drifts, source, solid_fraction=None):
     set through foamdict.edit_dict: every other byte of an existing file stays as it is."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
     entries["source"] = '"' + source.replace('"', "'") + '"'
-    text = None
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
-    return set_block_text(text, "drifts", entries, HEADER)
+    return bulkprops.block_text(path, "drifts", entries)
 
 
 def check_target(target):
@@ -278,12 +274,9 @@ def check_target(target):
     if not os.path.isdir(const):
         raise InputError(f"{target}: no constant/ directory (--target is a case directory; "
                          "bulkProperties goes into its constant/)")
-    path = os.path.join(const, "bulkProperties")
-    if not os.path.exists(path):
-        return {}
+    path = bulkprops.path(target)
     try:
-        with open(path) as f:
-            tree = parse_dict(f.read())
+        tree = bulkprops.read(target)
     except DictError as e:
         raise InputError(f"{path}: {e}") from None
     if "drifts" in tree and not isinstance(tree["drifts"], dict):
@@ -296,7 +289,7 @@ def write_target(target, res, source_arg, json_path=None):
     TARGET/constant/bulkProperties and the JSON; returns their paths. Nothing is written when a
     check fails (InputError)."""
     tree = check_target(target)
-    path = os.path.join(target, "constant", "bulkProperties")
+    path = bulkprops.path(target)
     try:
         alpha, alpha_from = _solid_fraction(target, tree, res)
     except ValueError as e:
@@ -322,7 +315,7 @@ def write_target(target, res, source_arg, json_path=None):
     res = dict(res, bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
     for p, body in ((path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")):
-        write_text(p, body)
+        bulkprops.write_text(p, body)
     return path, json_path
 
 

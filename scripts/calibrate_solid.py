@@ -82,8 +82,8 @@ def solid_entries(tan_phi, viscosity):
 def solid_text(case, tan_phi, viscosity):
     """CASE's constant/bulkProperties (path, text) with solid.tanPhi and solid.viscosity set."""
     try:
-        return bulkprops.path(case), bulkprops.block_text(case, "solid",
-                                                          solid_entries(tan_phi, viscosity))
+        p = bulkprops.path(case)
+        return p, bulkprops.block_text(p, "solid", solid_entries(tan_phi, viscosity))
     except bulkprops.DictError as e:
         raise InputError(f"{bulkprops.path(case)}: {e}") from None
 

@@ -21,12 +21,12 @@ def read(case):
         return parse_dict(f.read())
 
 
-def block_text(case, block, entries):
-    """CASE's bulkProperties text with BLOCK's ENTRIES (value strings) set, every other byte kept
-    (a new file when absent); DictError for an unreadable file or BLOCK given as an entry."""
+def block_text(p, block, entries):
+    """The text of the bulkProperties file P with BLOCK's ENTRIES (value strings) set, every other
+    byte kept (a new file when absent); DictError for an unreadable file or BLOCK as an entry."""
     text = None
-    if os.path.exists(path(case)):
-        with open(path(case)) as f:
+    if os.path.exists(p):
+        with open(p) as f:
             text = f.read()
     return set_block_text(text, block, entries, HEADER)
 
