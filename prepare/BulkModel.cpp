@@ -38,10 +38,12 @@ Schema makeSchema() {
                     "file's sha256)"),
           dictParam("solid", "the grains' Coulomb-viscoplastic rheology"),
           scalarParam("solid.viscosity", b.solidViscosity, Range::nonNegative(), "m²/s",
-                      "ν_s; estimate ν_s ≈ Δμ d √p / I₀ for the project's grains, not calibrated")
+                      "ν_s; calibrated with tanφ on the dry scene P against its DEM run "
+                      "(scripts/calibrate_solid.py: RMS front error 2.6 %)")
               .alsoAllowed("> 0 without a yield stress"),
           scalarParam("solid.tanPhi", b.tanPhi, Range::closed(0.0, 5.0), "",
-                      "pressure coefficient of the yield stress (tan 25°), not calibrated"),
+                      "pressure coefficient of the yield stress; calibrated on P with ν_s (it "
+                      "also carries the DEM's side-wall friction)"),
           scalarParam("solid.cohesion", b.cohesion, Range::nonNegative(), "Pa", "τ_c"),
           scalarParam("solid.regularisation", b.regularisation, Range::closed(0.0, 1e5), "s",
                       "m_y of ν_se = ν_s + τ_ys (1 − e^{−m_y D})/D (D the strain rate's "

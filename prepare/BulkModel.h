@@ -19,8 +19,9 @@ struct BulkModel {
   double lambdaU = 1, lambdaW = 1, lambdaP = 1;
   std::string driftSource = "default (lambda = 1)";  // what set them (mixflowCalibrate records it)
   // Solid: Coulomb-viscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik et al.
-  double solidViscosity = 0.03;                   // nu_s (m2/s, kinematic as in the paper)
-  double tanPhi = 0.4663;                         // tau_p = tan 25 deg
+  // nu_s and tanPhi: calibrated on the dry scene P against its DEM run (docs/calibration.md).
+  double solidViscosity = 0.02;                   // nu_s (m2/s, kinematic as in the paper)
+  double tanPhi = 0.45;                           // pressure coefficient of the yield stress
   double cohesion = 0;                            // Pa
   double regularisation = 100;                    // m_y (s)
   std::string yieldPressure = "buoyancyReduced";  // paper | buoyancyReduced

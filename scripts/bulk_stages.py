@@ -6,9 +6,10 @@ usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-s
           [--out results/bulk_model/stages.json]
 
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
-cfdDict.cellSize=...`) run as it is (stage A0: lambda = 1, the default solid rheology); the same
-case with the solid block of --solid-from's constant/bulkProperties (stage A: lambda = 1, the solid
-rheology calibrated on the dry scene P by scripts/calibrate_solid.py); then stage A's case with
+cfdDict.cellSize=...`) with the uncalibrated solid estimate (stage A0: lambda = 1, tanPhi = tan 25 deg,
+nu_s 0.03 m2/s); the same case with the solid block of --solid-from's constant/bulkProperties
+(stage A: lambda = 1, the solid rheology calibrated on the dry scene P by scripts/calibrate_solid.py,
+the bulk model's default); then stage A's case with
 the constant drifts calibrated from the CFD-DEM reference run's extraction (stage B:
 `scripts/calibrate_drifts.py REFERENCE/<scene> --target CASE --flowing-factor F`, weighted least
 squares; the
@@ -27,6 +28,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ESTIMATE = {"tanPhi": "0.4663", "viscosity": "0.03"}  # stage A0's solid: tan 25 deg, nu_s estimated
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import bulkprops, foamcase, outputs  # noqa: E402
 
@@ -86,7 +88,7 @@ def main():
         sys.exit(f"bulk_stages: --solid-from {a.solid_from}: {bulkprops.path(a.solid_from)} has no "
                  "solid { ... } block (scripts/calibrate_solid.py --target writes one)")
     out = {"command": "/usr/bin/python3 scripts/bulk_stages.py " + " ".join(sys.argv[1:]),
-           "cell_size_m": float(a.cell_size), "solid": solid,
+           "cell_size_m": float(a.cell_size), "solid": solid, "solid_A0": ESTIMATE,
            "solid_from": os.path.relpath(os.path.abspath(a.solid_from), ROOT), "scenes": {}}
     for scene in a.scenes.split(","):
         ref = os.path.join(a.reference, scene)
@@ -95,7 +97,8 @@ def main():
         work = os.path.join(a.work, "A0")
         shutil.rmtree(os.path.join(work, scene), ignore_errors=True)
         run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
-             "--scenes", scene, "--work", work, "--set", f"cfdDict.cellSize={a.cell_size}"])
+             "--scenes", scene, "--work", work, "--set", f"cfdDict.cellSize={a.cell_size}"]
+            + [x for k, v in ESTIMATE.items() for x in ("--set", f"bulkProperties.solid.{k}={v}")])
         case_a0 = os.path.join(work, scene)
         rec = {"cfd_dem_front_m": ref_front, "cfd_dem_time_s": t_ref,
                "A0": result(case_a0, ref_front)}
