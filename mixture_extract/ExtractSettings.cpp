@@ -4,9 +4,11 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "Dictionary.h"
 #include "Scene.h"
+#include "Schema.h"
 #include "WindowResult.h"
 
 namespace mixflow::mx {
@@ -41,7 +43,138 @@ void readAxis(const Dictionary& g, const std::string& key, double lo, double hi,
   n = static_cast<int>(v[2]);
 }
 
+// Vector entries (read by readAxis, the window list and the regions): text declarations whose
+// allowed column states the rule the code checks.
+Param vectorParam(std::string path, std::string unit, std::string allowed, std::string meaning,
+                  bool required) {
+  Param p = textParam(std::move(path), "", std::move(meaning));
+  p.unit = std::move(unit);
+  p.required = required;
+  return p.alsoAllowed(std::move(allowed));
+}
+
+Schema makeSchema() {
+  const ExtractSettings s{};
+  const Thresholds t{};
+  const FoamFieldNames f{};
+  const std::string field = "a field name";
+  return Schema(
+      "system/extractDict",
+      {
+          dictParam("grid", "the averaging grid in (x, y), averaged across the width (required)"),
+          // The domain is widened by one particle radius r: grains overlap the floor and walls by
+          // their contact deflection, and a grid that starts at -r holds all of their volume.
+          vectorParam("grid.x", "m", "x0 < x1 in [−r, channel.length + r]; nx whole in [1, 100000]",
+                      "`x0 x1 nx`: nx bins from x0 to x1 (r the particle radius)", true),
+          vectorParam("grid.y", "m", "y0 < y1 in [−r, channel.height + r]; ny whole in [1, 100000]",
+                      "`y0 y1 ny`: ny bins from y0 to y1", true),
+          dictParam("windows", "the time windows: a list, or start/end/width (required)"),
+          vectorParam("windows.list", "s", "pairs t0 < t1, t ≥ 0; not with start/end/width",
+                      "explicit windows `((t0 t1) (t0 t1) ...)`; every window must hold a "
+                      "particle snapshot",
+                      false)
+              .shownDefault("(none)"),
+          scalarParam("windows.start", 0, Range::nonNegative(), "s",
+                      "start of the first generated window"),
+          scalarParam("windows.end", 0, Range::positive(), "s",
+                      "end of the generated windows (the last one is cut there)")
+              .alsoAllowed("> start")
+              .shownDefault("controlDict `endTime`"),
+          requiredScalar("windows.width", Range::positive(), "s",
+                         "width of the generated windows from start to end")
+              .alsoAllowed("at most 100000 windows")
+              .shownDefault("(required without list)"),
+          dictParam("thresholds", "below these a bin's quantity is masked (NaN and flagged)"),
+          scalarParam("thresholds.minVelocity", t.minVelocity, Range::positive(), "m/s",
+                      "magnitude of u_s (w_s) below → λ_u (λ_w) masked"),
+          scalarParam("thresholds.minPressure", t.minPressure, Range::positive(), "Pa",
+                      "magnitude of p_s below → λ_p masked"),
+          scalarParam("thresholds.minSolidFraction", t.minSolidFraction, Range::closed(0, 1), "",
+                      "α_s below → the bin is not in the mixture"),
+          scalarParam("thresholds.minSaturation", t.minSaturation, Range::closed(0, 1), "",
+                      "liquid share of the bin's fluid volume below → not saturated"),
+          scalarParam("thresholds.minDenominator", t.minDenominator, Range::positive(), "",
+                      "magnitude of α_s + λ α_f below → Λ masked"),
+          integerParam("thresholds.minParticleSamples", t.minParticleSamples, 1, 1000000000,
+                       "particle-snapshot samples in the bin below → u_s, p_s masked"),
+          scalarParam("thresholds.minLiquidShare", t.minLiquidShare, Range::closed(0, 1), "",
+                      "liquid share of the bin's fluid volume below → u_f, p_f masked"),
+          wordParam("pressureConvention", s.pressureConvention, {"raw", "density", "both"},
+                    "which λ_p are written: raw p_f/p_s, density (p_f/ρ_f)/(p_s/ρ_s) (the "
+                    "paper's convention), or both"),
+          scalarParam("liquidDensity", 0, Range::positive(), "kg/m³",
+                      "ρ_f of the density convention; when given it wins over liquid.density, "
+                      "with a warning if they differ; needed with fluid data and the density "
+                      "convention when the scene has no liquid (ρ_s is sceneProperties "
+                      "`particles.density`)")
+              .shownDefault("sceneProperties `liquid.density`"),
+          dictParam("viscosity", "ν_s and ν_f for the Λ_η coefficients (Eqs. 36, 40, 43)"),
+          requiredScalar("viscosity.solid", Range::nonNegative(), "m²/s",
+                         "ν_s; with ν_f the Λ_η themselves are written, without `viscosity` only "
+                         "their coefficients")
+              .shownDefault("(none; required in `viscosity`)"),
+          requiredScalar("viscosity.fluid", Range::nonNegative(), "m²/s", "ν_f")
+              .shownDefault("(none; required in `viscosity`)"),
+          dictParam("fluid", "where the fluid fields come from"),
+          wordParam("fluid.source", s.fluidSource, {"auto", "none", "openfoam"},
+                    "auto: the OpenFOAM time directories when one holds the velocity field; "
+                    "none: particles only"),
+          wordParam("fluid.liquidFraction", f.liquidFraction, {},
+                    "α_l field; auto: alpha.liquid (mixflowPrepare's cases) if the time has it, "
+                    "else alpha.water (interFoam's tutorials); none: α_l = 1")
+              .alsoAllowed("auto, none or " + field),
+          wordParam("fluid.voidFraction", f.voidFraction, {},
+                    "ε_f field; none: ε_f = 1 (pure-liquid cases)")
+              .alsoAllowed("none or " + field),
+          wordParam("fluid.velocity", f.velocity, {}, "fluid velocity field").alsoAllowed(field),
+          wordParam("fluid.pressure", f.pressure, {},
+                    "static pressure field in Pa (interFoam family)")
+              .alsoAllowed(field),
+          wordParam("fluid.centres", f.centres, {},
+                    "cell centres (`postProcess -func writeCellCentres`), from the time "
+                    "directory, else 0/ or constant/")
+              .alsoAllowed(field),
+          wordParam("fluid.volumes", f.volumes, {},
+                    "cell volumes (`postProcess -func writeCellVolumes`), from the time "
+                    "directory, else 0/ or constant/")
+              .alsoAllowed(field),
+          dictParam("particles", "how the particle snapshots are read"),
+          wordParam("particles.stressKineticTerm", s.stressKineticTerm,
+                    {"auto", "included", "excluded"},
+                    "whether c_pstress holds the kinetic term −m v v; auto: from the `compute "
+                    "pstress` line of dem/in.liggghts"),
+          // Snapshot times are step * dt, off the nominal multiples of writeInterval by up to
+          // dt / 2.
+          scalarParam("timeTolerance", 0, Range::nonNegative(), "s",
+                      "a window holds the snapshots with t0 − tol ≤ t < t1 − tol")
+              .shownDefault("½ DEM time step"),
+          // A coupled run writes the fluid at the first CFD step at or after each multiple of
+          // writeInterval, so a fluid time lags its snapshot by up to one CFD step; beyond half
+          // the interval a fluid time could pair with the neighbouring snapshot.
+          scalarParam("pairTolerance", 0, Range::nonNegative(), "s",
+                      "a fluid time pairs with the nearest particle snapshot at most this far "
+                      "from it")
+              .alsoAllowed("≤ ½ controlDict `writeInterval`")
+              .shownDefault("0.1 × controlDict `writeInterval`"),
+          dictParam("regions",
+                    "named regions averaged per window; default one region `all` = "
+                    "the grid"),
+          dictParam("regions.<name>", "one region: the bins whose centre lies inside"),
+          vectorParam("regions.<name>.x", "m",
+                      "x0 < x1; overlapping the grid and holding at least one bin centre",
+                      "`x0 x1` of the region", true),
+          vectorParam("regions.<name>.y", "m", "y0 < y1", "`y0 y1` of the region", true),
+          textParam("output", s.output, "file base of the outputs, relative to the case")
+              .alsoAllowed("one name without spaces"),
+      });
+}
+
 }  // namespace
+
+const Schema& ExtractSettings::schema() {
+  static const Schema sc = makeSchema();
+  return sc;
+}
 
 ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Scene& scene) {
   ExtractSettings s;
@@ -53,11 +186,11 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
         "grid and the time windows from it (example in mixture_extract/README.md)");
   s.dictText = readTextFile(dictFile);
   const Dictionary d = Dictionary::parse(s.dictText, dictFile);
-  d.allowOnly({"grid", "windows", "thresholds", "pressureConvention", "liquidDensity", "viscosity",
-               "fluid", "particles", "timeTolerance", "pairTolerance", "regions", "output"});
+  const Schema& sc = schema();
+  sc.allowOnly(d, "");
 
   const Dictionary& g = d.subDict("grid");
-  g.allowOnly({"x", "y"});
+  sc.allowOnly(g, "grid");
   // The domain widened by one particle radius: grains overlap the floor and walls by their contact
   // deflection, and a grid that starts at -r holds all of their volume.
   const double r = scene.particles.radius();
@@ -67,7 +200,7 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
            "channel.height in constant/sceneProperties, +- one particle radius", s.y0, s.y1, s.ny);
 
   const Dictionary& w = d.subDict("windows");
-  w.allowOnly({"list", "start", "end", "width"});
+  sc.allowOnly(w, "windows");
   if (w.has("list")) {
     for (const char* k : {"start", "end", "width"})
       if (w.has(k)) w.fail(k, "give either 'list' or 'start/end/width', not both");
@@ -84,9 +217,9 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
     }
   } else {
     s.windowsGenerated = true;
-    const double start = w.scalarOr("start", 0.0, Range::nonNegative());
-    const double end = w.scalarOr("end", scene.endTime, Range::positive());
-    const double width = w.scalar("width", Range::positive());
+    const double start = sc.scalar(w, "windows.start");
+    const double end = w.has("end") ? sc.scalar(w, "windows.end") : scene.endTime;
+    const double width = sc.scalar(w, "windows.width");
     s.windowStart = start;
     s.windowWidth = width;
     s.windowStartWhere = w.where("start");
@@ -101,24 +234,22 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   }
 
   const Dictionary t = d.subDictOrEmpty("thresholds");
-  t.allowOnly({"minVelocity", "minPressure", "minSolidFraction", "minSaturation", "minDenominator",
-               "minParticleSamples", "minLiquidShare"});
+  sc.allowOnly(t, "thresholds");
   Thresholds& th = s.thresholds;
-  th.minVelocity = t.scalarOr("minVelocity", th.minVelocity, Range::positive());
-  th.minPressure = t.scalarOr("minPressure", th.minPressure, Range::positive());
-  th.minSolidFraction = t.scalarOr("minSolidFraction", th.minSolidFraction, Range::closed(0, 1));
-  th.minSaturation = t.scalarOr("minSaturation", th.minSaturation, Range::closed(0, 1));
-  th.minDenominator = t.scalarOr("minDenominator", th.minDenominator, Range::positive());
-  th.minParticleSamples = t.integerOr("minParticleSamples", th.minParticleSamples, 1, 1000000000);
-  th.minLiquidShare = t.scalarOr("minLiquidShare", th.minLiquidShare, Range::closed(0, 1));
+  th.minVelocity = sc.scalar(t, "thresholds.minVelocity");
+  th.minPressure = sc.scalar(t, "thresholds.minPressure");
+  th.minSolidFraction = sc.scalar(t, "thresholds.minSolidFraction");
+  th.minSaturation = sc.scalar(t, "thresholds.minSaturation");
+  th.minDenominator = sc.scalar(t, "thresholds.minDenominator");
+  th.minParticleSamples = sc.integer(t, "thresholds.minParticleSamples");
+  th.minLiquidShare = sc.scalar(t, "thresholds.minLiquidShare");
 
-  s.pressureConvention =
-      d.wordOr("pressureConvention", s.pressureConvention, {"raw", "density", "both"});
+  s.pressureConvention = sc.word(d, "pressureConvention");
   // The liquid's density: an explicit liquidDensity wins over sceneProperties liquid.density (a
   // mixture's liquid), with a warning when the two differ.
   const std::string sceneFile = scene.caseDir + "/constant/sceneProperties";
   if (d.has("liquidDensity")) {
-    s.liquidDensity = d.scalar("liquidDensity", Range::positive());
+    s.liquidDensity = sc.scalar(d, "liquidDensity");
     s.liquidDensitySource = d.where("liquidDensity");
     if (scene.fluidDensity > 0 && scene.fluidDensity != s.liquidDensity)
       s.liquidDensityWarning = d.where("liquidDensity") + " = " + num(s.liquidDensity) +
@@ -134,43 +265,41 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   s.solidDensity = scene.particles.density;
   if (d.has("viscosity")) {
     const Dictionary& v = d.subDict("viscosity");
-    v.allowOnly({"solid", "fluid"});
+    sc.allowOnly(v, "viscosity");
     s.haveViscosities = true;
-    s.nuSolid = v.scalar("solid", Range::nonNegative());
-    s.nuFluid = v.scalar("fluid", Range::nonNegative());
+    s.nuSolid = sc.scalar(v, "viscosity.solid");
+    s.nuFluid = sc.scalar(v, "viscosity.fluid");
   }
 
   const Dictionary f = d.subDictOrEmpty("fluid");
-  f.allowOnly(
-      {"source", "liquidFraction", "voidFraction", "velocity", "pressure", "centres", "volumes"});
-  s.fluidSource = f.wordOr("source", s.fluidSource, {"auto", "none", "openfoam"});
+  sc.allowOnly(f, "fluid");
+  s.fluidSource = sc.word(f, "fluid.source");
   FoamFieldNames& fn = s.fluidNames;
-  fn.liquidFraction = f.wordOr("liquidFraction", fn.liquidFraction, {});
-  fn.voidFraction = f.wordOr("voidFraction", fn.voidFraction, {});
-  fn.velocity = f.wordOr("velocity", fn.velocity, {});
-  fn.pressure = f.wordOr("pressure", fn.pressure, {});
-  fn.centres = f.wordOr("centres", fn.centres, {});
-  fn.volumes = f.wordOr("volumes", fn.volumes, {});
+  fn.liquidFraction = sc.word(f, "fluid.liquidFraction");
+  fn.voidFraction = sc.word(f, "fluid.voidFraction");
+  fn.velocity = sc.word(f, "fluid.velocity");
+  fn.pressure = sc.word(f, "fluid.pressure");
+  fn.centres = sc.word(f, "fluid.centres");
+  fn.volumes = sc.word(f, "fluid.volumes");
 
   const Dictionary p = d.subDictOrEmpty("particles");
-  p.allowOnly({"stressKineticTerm"});
-  s.stressKineticTerm =
-      p.wordOr("stressKineticTerm", s.stressKineticTerm, {"auto", "included", "excluded"});
+  sc.allowOnly(p, "particles");
+  s.stressKineticTerm = sc.word(p, "particles.stressKineticTerm");
 
-  // Snapshot times are step * dt, off the nominal multiples of writeInterval by up to dt / 2.
-  s.timeTolerance = d.scalarOr("timeTolerance", 0.5 * scene.timeStepUsed(), Range::nonNegative());
-  // A coupled run writes the fluid at the first CFD step at or after each multiple of
-  // writeInterval, so a fluid time lags its snapshot by up to one CFD step; beyond half the
-  // interval a fluid time could pair with the neighbouring snapshot.
+  // The DEM step is validated (it throws above its limit) even when timeTolerance is given.
+  const double halfStep = 0.5 * scene.timeStepUsed();
+  s.timeTolerance = d.has("timeTolerance") ? sc.scalar(d, "timeTolerance") : halfStep;
+  // The declared range's upper end is half the scene's writeInterval (see the declaration).
+  const Param& pt = sc.param("pairTolerance");
   s.pairTolerance = d.scalarOr("pairTolerance", 0.1 * scene.writeInterval,
-                               Range::closed(0, 0.5 * scene.writeInterval));
+                               Range::closed(pt.range.lo, 0.5 * scene.writeInterval));
   s.pairToleranceWhere = d.where("pairTolerance");
 
   if (d.has("regions")) {
     const Dictionary& r = d.subDict("regions");
     for (const std::string& name : r.keys()) {
       const Dictionary& rd = r.subDict(name);
-      rd.allowOnly({"x", "y"});
+      sc.allowOnly(rd, "regions.<name>");
       Region reg{name};
       const std::vector<double> x = rd.scalars("x", Range::any());
       const std::vector<double> y = rd.scalars("y", Range::any());
@@ -192,12 +321,9 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   }
   if (s.regions.empty()) s.regions.push_back({"all", s.x0, s.x1, s.y0, s.y1});
 
-  if (d.has("output")) {
-    s.output = d.text("output");
-    if (s.output.empty() || s.output.find(' ') != std::string::npos)
-      d.fail("output",
-             "must be one file base name (no spaces), e.g. postProcessing/mixture/mixture");
-  }
+  s.output = sc.text(d, "output");
+  if (s.output.empty() || s.output.find(' ') != std::string::npos)
+    d.fail("output", "must be one file base name (no spaces), e.g. postProcessing/mixture/mixture");
   return s;
 }
 

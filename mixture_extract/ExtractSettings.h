@@ -1,6 +1,6 @@
 // Settings of mixflowExtract, read from <case>/system/extractDict (OpenFOAM syntax, validated by
 // common/Dictionary: a wrong entry stops with the file, the entry and the allowed range).
-// Entries and defaults: mixture_extract/README.md.
+// Entries and defaults: ExtractSettings::schema(), shown in docs/parameters.md.
 #pragma once
 
 #include <string>
@@ -8,6 +8,9 @@
 
 #include "FluidSource.h"
 
+namespace mixflow {
+class Schema;
+}
 namespace mixflow::dem {
 struct Scene;
 }
@@ -63,6 +66,8 @@ struct ExtractSettings {
   std::vector<Region> regions;
   std::string output = "postProcessing/mixture/mixture";  // case-relative base name
 
+  // Every entry of system/extractDict once: type, default, range or words, unit, meaning.
+  static const Schema& schema();
   static ExtractSettings read(const std::string& dictFile, const dem::Scene& scene);
   // Canonical text of every setting that changes per-window results (not the window list): an
   // existing output is appended to only when this is unchanged.

@@ -15,6 +15,7 @@
 #include "CouplingProperties.h"
 #include "DemDict.h"
 #include "Dictionary.h"
+#include "ExtractSettings.h"
 #include "MixflowProperties.h"
 #include "SceneProperties.h"
 
@@ -38,6 +39,9 @@ std::vector<Table> tables() {
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
       {"couplingProperties", mixflow::coupling::CouplingProperties::schema(), {""}},
       {"bulkProperties", mixflow::cfd::BulkModel::schema(), {"", "drifts", "solid", "basal"}},
+      {"extractDict",
+       mixflow::mx::ExtractSettings::schema(),
+       {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "regions.<name>"}},
   };
 }
 
