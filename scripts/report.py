@@ -577,8 +577,9 @@ def write_report(out, work, sc, F, rows, law, command, bulk_lines=()):
 
 
 def front_at(front, t):
-    """A front (t, x) at time T, None if the run ended before."""
-    if front is None or front[0][-1] < t - 1e-9:
+    """A front (t, x) at time T, None if the run ended before (by more than 1 ms: a run stops up
+    to a DEM step short of its endTime, and then its last value stands for T)."""
+    if front is None or front[0][-1] < t - 1e-3:
         return None
     return float(np.interp(t, *front))
 
