@@ -4,7 +4,7 @@
 usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/reference]
                      [--times 0.1,0.2,0.3,0.5,1,1.5]
                      [--paper-cost results/li_zhao_2018/cost_paper.json]
-                     [--paper-physics results/bench/coupled_vs_dry_paper_dem_s13.json]
+                     [--paper-physics results/bench/coupled_vs_dry_paper_dem.json]
                      [--out results/li_zhao_2018]
 
 For each tier whose run of the scene finished (scripts/suite.py writes WORK/<scene>/.done): the
