@@ -1,39 +1,10 @@
 // The DEM side of the exchange: reads the particles a rank owns from LIGGGHTS and hands them the
-// fluid force, which LIGGGHTS then applies at every DEM step until the next exchange.
-//
-// Mechanism: `fix mixflowFluidForce all external` (LIGGGHTS 3.8 / LAMMPS fix external), a per-atom
-// array fexternal that the fix adds to f in post_force at every step; it migrates with its atoms
-// between ranks and through atom sorting. Two ways to integrate the drag (dragIntegration):
-//   held      `pf/array`: the coupling writes F = beta (U - v) + F_explicit at each exchange and
-//             the force is held over the interval (needs beta T / m < 2 to be stable: see
-//             dragRelaxationLimit);
-//   implicit  `pf/callback 1 1`: the exchange writes beta, U and F_explicit into a per-atom
-//             `fix property/atom` (migrates like the atoms); at every DEM step a callback gives
-//             F_d = beta_eff (U - v - dt (f_other + F_explicit) / m), beta_eff = beta / (1 +
-//             beta dt / m): backward Euler for the drag in LIGGGHTS' velocity-Verlet half-step
-//             update, stable for any beta, with the exact terminal slip f_other / beta. It adds
-//             up the drag impulse it applied, which the next exchange returns to the fluid.
-//             With a fluid share m_f (AppliedDrag::invFluidMass) the fluid velocity seen is
-//             U - J / m_f (J the impulse so far) and backward Euler covers the pair:
-//             F_d = beta (U - J/m_f - v - dt (f_other + F_explicit) / m) / (1 + beta dt (1/m +
-//             1/m_f)), so particle and fluid share relax to their common velocity within the
-//             interval, as they would if the fluid were solved alongside.
-//             With a counterflow factor c (AppliedDrag::counterflow, dragFluidResponse
-//             continuity) the fluid velocity seen is U - c (v - v_ref): the mixture volume flux
-//             eps U + (1 - eps) v of the particle's cell is held over the interval instead of U,
-//             v_ref being the particle's mean velocity over the interval whose displacement the
-//             fluid step behind U saw (two intervals back: the exchange samples the fluid before
-//             its step). Backward Euler: F_d = beta (U + c v_ref - (1 + c) v') with v' the
-//             velocity after the step; the terminal slip stays f_other / beta.
-//             f_other is the force LIGGGHTS has summed when this fix's post_force runs (pair,
-//             gravity, walls: fixes defined before it), so this fix must be the last force fix.
-//             Particles must be integrated by LIGGGHTS (a fixed bed without an integrator
-//             needs `held`).
-// The implicit state is written to LIGGGHTS restarts and read back with them (a resumed run's first
-// interval then uses the forces the stopped run had set: keepRestoredState).
-// Caveat (checked): fix external does not initialise the array for atoms created during a run
-// (memory->grow), so particles must not be inserted during a coupled interval; pull() stops the
-// run if the global atom count grew.
+// fluid force through `fix mixflowFluidForce all external` (an atom-migrating per-atom array that
+// LIGGGHTS adds to f at every DEM step), held over the interval (`held`) or as a per-step backward
+// Euler drag from a callback (`implicit`); the formulas are in coupling/README.md "Drag
+// integration". The fix must be the last force fix (the callback reads the force summed so far).
+// The implicit state goes into LIGGGHTS restarts (keepRestoredState). fix external does not
+// initialise its array for atoms created during a run, so pull() stops a run whose atom count grew.
 #pragma once
 
 #include <cstdint>
