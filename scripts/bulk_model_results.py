@@ -13,8 +13,12 @@ results: OUT/stages.json (scripts/bulk_stages.py: the front error per calibratio
 OUT/solid_calibration.json (scripts/calibrate_solid.py: the dry P against its DEM run) and
 results/bench/bulk_vs_cfddem*.json (bench/bulk_vs_cfddem.py: solver CPU, bulk against CFD-DEM,
 measured in one run). Writes OUT/summary.json, OUT/fronts.csv (fronts at 0.5, 1, 1.5, 2, 3 s) and
-OUT/fronts.png (front against time, bulk and CFD-DEM, per scene). The Froude number and the
-back-wall height beside CFD-DEM's are in the reproduction report (scripts/report.py --bulk-work).
+OUT/fronts.png (front against time, bulk and CFD-DEM, per scene), OUT/profiles.png (the bulk
+mixture's surface against the CFD-DEM liquid's at 0.5, 1 and 3 s, with the CFD-DEM granular
+deposit) and OUT/velocity.png (the bulk model's reconstructed u_s and u_f against the CFD-DEM grains'
+u(y) at the section and time of the scene's demDict velocityProfile; the bulk cell centres from
+OpenFOAM's `postProcess -func writeCellCentres`). The Froude number and the back-wall height
+beside CFD-DEM's are in the reproduction report (scripts/report.py --bulk-work).
 """
 
 import argparse
@@ -30,10 +34,38 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import outputs  # noqa: E402
+from mixflow import foamcase, outputs  # noqa: E402
 
 SCENES = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 TIMES = (0.5, 1.0, 1.5, 2.0, 3.0)
+PROFILE_TIMES = (0.5, 1.0, 3.0)
+
+
+def profile(case, t):
+    """(x, surface) of the liquid profiles.csv row set nearest to T."""
+    rows = outputs.read_rows(os.path.join(case, outputs.LIQUID_PROFILES))
+    tn = min({r[outputs.TIME] for r in rows}, key=lambda v: abs(v - t))
+    sel = [r for r in rows if r[outputs.TIME] == tn]
+    return [r["x_m"] for r in sel], [r["surface_m"] for r in sel]
+
+
+def bulk_velocity(case, x, t):
+    """(y, u_s, u_f, time) of the bulk cell column nearest X (the lower of two as near), at the
+    field write nearest T, where the mixture fills at least half the cell."""
+    tv, tn = min(foamcase.time_dirs(case), key=lambda d: abs(d[0] - t))
+    d = os.path.join(case, tn)
+    if not os.path.exists(os.path.join(d, "C")):
+        foamcase.run(["postProcess", "-func", "writeCellCentres", "-time", tn], case,
+                     "log.writeCellCentres", env_extra=foamcase.run_env())
+    c = foamcase.read_internal_field(os.path.join(d, "C"))
+    n = len(c)
+    us = foamcase.read_internal_field(os.path.join(d, "U.solid"), n)
+    uf = foamcase.read_internal_field(os.path.join(d, "U.fluid"), n)
+    a = foamcase.read_internal_field(os.path.join(d, "alpha.liquid"), n)
+    x0 = min((ci[0] for ci in c), key=lambda cx: (abs(cx - x), cx))  # one column: the nearest
+    col = sorted((ci[1], usi[0], ufi[0]) for ci, usi, ufi, ai in zip(c, us, uf, a)
+                 if abs(ci[0] - x0) < 1e-9 and ai >= 0.5)
+    return [v[0] for v in col], [v[1] for v in col], [v[2] for v in col], tv
 
 
 def load(path):
@@ -139,6 +171,42 @@ def main():
     axes[1].legend(loc="lower right")
     fig.tight_layout()
     fig.savefig(os.path.join(a.out, "fronts.png"), dpi=110)
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 3.8), sharey=True)
+    for ax, (scene, name) in zip(axes, SCENES.items()):
+        bulk, ref = os.path.join(a.work, scene), os.path.join(a.reference, scene)
+        for k, t in enumerate(PROFILE_TIMES):
+            ax.plot(*profile(ref, t), "-", color=f"C{k}", label=f"CFD-DEM liquid, {t:g} s")
+            ax.plot(*profile(bulk, t), "--", color=f"C{k}", label=f"bulk mixture, {t:g} s")
+        dep = outputs.read_rows(os.path.join(ref, outputs.DEPOSIT))
+        ax.plot([r["x_m"] for r in dep], [r["h_top_m"] for r in dep], "k:",
+                label="CFD-DEM grains at the end")
+        ax.set_title(name)
+        ax.set_xlim(0, 3.5)
+        ax.set_xlabel("x (m)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("surface height (m)")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "profiles.png"), dpi=110)
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 3.8), sharey=True)
+    for ax, (scene, name) in zip(axes, SCENES.items()):
+        ref = os.path.join(a.reference, scene)
+        vp = outputs.read_rows(os.path.join(ref, outputs.VELOCITY_PROFILE))
+        x, t = vp[0]["x_section_m"], vp[0][outputs.TIME]
+        ax.plot([r["u_x_m_s"] for r in vp], [r["y_m"] for r in vp], "k-o", ms=3,
+                label=f"CFD-DEM grains, {t:.2f} s")
+        y, us, uf, tb = bulk_velocity(os.path.join(a.work, scene), x, t)
+        ax.plot(us, y, "C0--", label=f"bulk u_s, {tb:g} s")
+        ax.plot(uf, y, "C1:", label=f"bulk u_f, {tb:g} s")
+        ax.set_title(f"{name}, x = {x:g} m")
+        ax.set_xlabel("u (m/s)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel("y (m)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "velocity.png"), dpi=110)
     for name, rec in out["scenes"].items():
         if name != "P":
             print(f"{name:5s} bulk front {rec['bulk_front_m']:.3f} m, CFD-DEM "
