@@ -43,7 +43,8 @@ class ViscousForce final : public ForceModel {
   }
   std::string describe() const override {
     return "viscousForce: +V_p div(tau) (tau = rho nu_eff (grad U + grad U^T), the fluid's own "
-           "viscous term; physics.md's -(div tau) V_p in CFDEM's sign); explicit (fSource)";
+           "viscous term; the paper's -(div tau) V_p in CFDEM's sign, docs/model.md); explicit "
+           "(fSource)";
   }
 };
 
