@@ -2,19 +2,18 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
+          [--estimators wls,median] [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
 
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
 cfdDict.cellSize=...`) with the uncalibrated solid estimate (stage A0: lambda = 1, tanPhi = tan 25 deg,
 nu_s 0.03 m2/s); the same case with the solid block of --solid-from's constant/bulkProperties
 (stage A: lambda = 1, the solid rheology calibrated on the dry scene P by scripts/calibrate_solid.py,
-the bulk model's default); then stage A's case with
-the constant drifts calibrated from the CFD-DEM reference run's extraction (stage B:
-`scripts/calibrate_drifts.py REFERENCE/<scene> --target CASE --flowing-factor F`, weighted least
-squares; the
-reference run needs postProcessing/mixture/mixture.h5, e.g. from scripts/mixture_lambdas.py) and
-run again (`./Allrun`). Against the reference's granular front at the end (its
+the bulk model's default); then stage A's case with the constant drifts calibrated from the
+CFD-DEM reference run's extraction, once per --estimators entry (stage B: `scripts/calibrate_drifts.py
+REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B) or median (key
+B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
+scripts/mixture_lambdas.py) and run again (`./Allrun`). Against the reference's granular front at the end (its
 postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
 and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
 """
@@ -59,6 +58,27 @@ def result(case, ref_front):
                 os.path.join(case, "log.mixflowBulkFoam"))}
 
 
+STAGE_B = {"wls": "B", "median": "B_median"}  # the stage's key in OUT per estimator
+
+
+def stage_b(rec, estimator, case_a, ref, ref_front, a):
+    """Stage B with ESTIMATOR's constant drifts: REC[key] (its result, or why it did not run),
+    REC[key + '_calibration'] (the calibration's table) and REC[key + '_drifts'] (its JSON)."""
+    key = STAGE_B[estimator]
+    case_b = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
+    cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
+               "--target", case_b, "--flowing-factor", a.flowing_factor,
+               "--estimator", estimator], fatal=False)
+    if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
+        rec[key] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
+        return
+    rec[key + "_calibration"] = cal.strip().splitlines()[-12:]
+    with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
+        rec[key + "_drifts"] = json.load(f)
+    run(["./Allrun", "1"], cwd=case_b)
+    rec[key] = result(case_b, ref_front)
+
+
 def fresh_copy(src, dst):
     """DST (removed first) with the inputs of the case SRC."""
     shutil.rmtree(dst, ignore_errors=True)
@@ -75,6 +95,9 @@ def main():
     ap.add_argument("--flowing-factor", default="0.02",
                     help="calibrate_drifts.py --flowing-factor: 0.02 sqrt(g H) = 0.049 m/s, the "
                     "flowing rule of results/yield_stress/lambdas.json (|u_s| >= 0.05 m/s)")
+    ap.add_argument("--estimators", default="wls,median",
+                    help="calibrate_drifts.py --estimator of stage B, one run each (wls: key B, "
+                    "median: key B_median)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
@@ -107,26 +130,15 @@ def main():
         bulkprops.write_text(p, bulkprops.block_text(p, "solid", solid))
         run(["./Allrun", "1"], cwd=case_a)
         rec["A"] = result(case_a, ref_front)
-        case_b = fresh_copy(case_a, os.path.join(a.work, "B", scene))
-        cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
-                   "--target", case_b, "--flowing-factor", a.flowing_factor], fatal=False)
         out["scenes"][scene] = rec
-        if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
-            rec["B"] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
-            print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
-                  f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); "
-                  "stage B not run", flush=True)
-            continue
-        rec["B_calibration"] = cal.strip().splitlines()[-12:]
-        with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
-            rec["B_drifts"] = json.load(f)
-        run(["./Allrun", "1"], cwd=case_b)
-        rec["B"] = result(case_b, ref_front)
+        for est in a.estimators.split(","):
+            stage_b(rec, est, case_a, ref, ref_front, a)
+        bs = [f"{est} " + (f"{rec[k]['front_m']:.3f} m ({100 * rec[k]['front_error']:+.0f} %)"
+                           if "front_m" in rec[k] else "not run")
+              for est, k in STAGE_B.items() if k in rec]
         print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
-              f"A {rec['A']['front_m']:.3f} m "
-              f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
-              f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU {rec['A']['solver_cpu_s']} / "
-              f"{rec['B']['solver_cpu_s']} s", flush=True)
+              f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); stage B "
+              + ", ".join(bs), flush=True)
     outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
