@@ -252,7 +252,12 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
     << "        solidDensity        " << num(b.solidDensity) << ";\n"
     << "        fluidDensity        " << num(r.density) << ";\n"
     << "        airDensity          " << num(c.air.density) << ";\n"
-    << "        relaxation          " << num(b.relaxation) << ";\n    }\n";
+    << "        relaxation          " << num(b.relaxation) << ";\n";
+  // Only with fields, so that the constant drifts' files stay as they were.
+  if (b.driftFields)
+    s << "        driftFields         on;   // constant/lambdaU, lambdaW, lambdaP\n"
+      << "        yieldPressure       " << b.yieldPressure << ";   // kappa_y per cell\n";
+  s << "    }\n";
   return s.str();
 }
 
