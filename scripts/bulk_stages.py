@@ -14,7 +14,9 @@ the constant drifts calibrated from the CFD-DEM reference run's extraction (stag
 `scripts/calibrate_drifts.py REFERENCE/<scene> --target CASE --flowing-factor F`, weighted least
 squares; the
 reference run needs postProcessing/mixture/mixture.h5, e.g. from scripts/mixture_lambdas.py) and
-run again (`./Allrun`). Against the reference's granular front at the end (its
+run again (`./Allrun`); stage C: stage A's case with the drift fields lambda(x, y) on its mesh
+(`calibrate_drifts.py ... --fields`, docs/calibration.md "Stage C"). Against the reference's
+granular front at the end (its
 postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
 and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
 """
@@ -116,17 +118,33 @@ def main():
             print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
                   f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); "
                   "stage B not run", flush=True)
+        else:
+            rec["B_calibration"] = cal.strip().splitlines()[-12:]
+            with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
+                rec["B_drifts"] = json.load(f)
+            run(["./Allrun", "1"], cwd=case_b)
+            rec["B"] = result(case_b, ref_front)
+            print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 "
+                  f"{rec['A0']['front_m']:.3f} m, A {rec['A']['front_m']:.3f} m "
+                  f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
+                  f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU "
+                  f"{rec['A']['solver_cpu_s']} / {rec['B']['solver_cpu_s']} s", flush=True)
+        # Stage C: stage A's case (its mesh copied along) with the drift fields on that mesh.
+        case_c = fresh_copy(case_a, os.path.join(a.work, "C", scene))
+        cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
+                   "--target", case_c, "--flowing-factor", a.flowing_factor, "--fields"],
+                  fatal=False)
+        if cal is None:  # the constant fallback outside the range (as stage B)
+            rec["C"] = {"error": "calibrate_drifts.py --fields refused (its message above)"}
             continue
-        rec["B_calibration"] = cal.strip().splitlines()[-12:]
-        with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
-            rec["B_drifts"] = json.load(f)
-        run(["./Allrun", "1"], cwd=case_b)
-        rec["B"] = result(case_b, ref_front)
-        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
-              f"A {rec['A']['front_m']:.3f} m "
-              f"({100 * rec['A']['front_error']:+.0f} %), stage B {rec['B']['front_m']:.3f} m "
-              f"({100 * rec['B']['front_error']:+.0f} %); bulk CPU {rec['A']['solver_cpu_s']} / "
-              f"{rec['B']['solver_cpu_s']} s", flush=True)
+        rec["C_calibration"] = cal.strip().splitlines()[-3:]
+        with open(os.path.join(case_c, "constant", "bulkProperties.calibration.json")) as f:
+            rec["C_fields"] = json.load(f)["fields"]
+        run(["./Allrun", "1"], cwd=case_c)
+        rec["C"] = result(case_c, ref_front)
+        print(f"{scene}: stage C {rec['C']['front_m']:.3f} m "
+              f"({100 * rec['C']['front_error']:+.0f} %); bulk CPU {rec['C']['solver_cpu_s']} s",
+              flush=True)
     outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
