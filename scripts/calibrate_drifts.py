@@ -297,7 +297,7 @@ def _foam_list(path, what):
     """The list body of an ASCII polyMesh file: (count, text after its opening parenthesis)."""
     with open(path) as f:
         text = f.read()
-    if "format      binary" in text or re.search(r"format\s+binary", text):
+    if re.search(r"format\s+binary", text):
         raise InputError(f"{path}: binary; --fields reads ASCII meshes (blockMesh's default)")
     head = re.search(r"\}\s*(?://[^\n]*\n|\s)*?(\d+)\s*\(", text)
     if not head:
@@ -315,8 +315,7 @@ def cell_centres(target):
         raise InputError(f"{mesh}: no {', '.join(missing)} (--fields writes the drifts on the "
                          "target's mesh: run mixflowPrepare and blockMesh on it first)")
     n, body = _foam_list(os.path.join(mesh, "points"), "points")
-    pts = np.array(re.findall(r"\(([^()]*)\)", body)[:n], dtype=object)
-    pts = np.array([[float(v) for v in p.split()] for p in pts])
+    pts = np.array([[float(v) for v in p.split()] for p in re.findall(r"\(([^()]*)\)", body)[:n]])
     n, body = _foam_list(os.path.join(mesh, "faces"), "faces")
     faces = [[int(v) for v in f.split()] for f in re.findall(r"\d+\(([^()]*)\)", body)[:n]]
     owner = [int(v) for v in _foam_list(os.path.join(mesh, "owner"), "owner")[1]
