@@ -2,7 +2,7 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
+          [--field-mean ratio] [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
 
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
@@ -77,6 +77,8 @@ def main():
     ap.add_argument("--flowing-factor", default="0.02",
                     help="calibrate_drifts.py --flowing-factor: 0.02 sqrt(g H) = 0.049 m/s, the "
                     "flowing rule of results/yield_stress/lambdas.json (|u_s| >= 0.05 m/s)")
+    ap.add_argument("--field-mean", default="ratio",
+                    help="stage C: calibrate_drifts.py --field-mean (ratio or wls)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
@@ -132,7 +134,8 @@ def main():
         # Stage C: stage A's case (its mesh copied along) with the drift fields on that mesh.
         case_c = fresh_copy(case_a, os.path.join(a.work, "C", scene))
         cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
-                   "--target", case_c, "--flowing-factor", a.flowing_factor, "--fields"],
+                   "--target", case_c, "--flowing-factor", a.flowing_factor, "--fields",
+                   "--field-mean", a.field_mean],
                   fatal=False)
         if cal is None:  # the constant fallback outside the range (as stage B)
             rec["C"] = {"error": "calibrate_drifts.py --fields refused (its message above)"}

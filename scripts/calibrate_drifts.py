@@ -23,7 +23,8 @@ the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on
 time mean over the selected windows of the per-bin ratio (u_f / u_s, ...) of the bin holding the
 cell centre, weighted as the wls estimator weighs the bins (the --weights weight); the constant
 estimate where the bin has no selected window or the cell lies outside the grid; clipped into the
-bulk model's range (the count is printed). Fixed in time: the first form of stage C.
+bulk model's range (the count is printed). --field-mean wls: per bin the wls slope of its windows
+instead of the ratios' mean. Fixed in time: the first form of stage C.
 """
 
 import argparse
@@ -282,15 +283,24 @@ def bulk_properties_text(path, drifts, source, solid_fraction=None, fields=False
     return bulkprops.block_text(path, "drifts", entries)
 
 
-def bin_means(s):
-    """Per spatial bin (y, x) the weighted time mean of the ratio y/x over the selected windows,
-    NaN where the bin has none: sum_t w lambda / sum_t w with the selection's mask and weights."""
+FIELD_MEANS = ("ratio", "wls")
+
+
+def bin_means(s, how="ratio"):
+    """Per spatial bin (y, x) over the selected windows, NaN where the bin has none: the weighted
+    time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), or the wls slope of the bin's
+    windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less)."""
     m = s["mask"]
     with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(m, s["y_all"] / s["x_all"], 0.0)
+        x = np.where(m, s["x_all"], 0.0)
+        y = np.where(m, s["y_all"], 0.0)
         w = np.where(m, s["w_all"], 0.0)
-        den = w.sum(axis=0)
-        return np.where(den > 0, (w * ratio).sum(axis=0) / np.where(den > 0, den, 1.0), np.nan)
+        if how == "wls":
+            num, den = (w * x * y).sum(axis=0), (w * x * x).sum(axis=0)
+        else:
+            num = (w * np.where(m, y / np.where(m, x, 1.0), 0.0)).sum(axis=0)
+            den = w.sum(axis=0)
+        return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.nan)
 
 
 def _foam_list(path, what):
@@ -331,7 +341,7 @@ def cell_centres(target):
     return np.array([pts[sorted(c)].mean(axis=0)[:2] for c in cells])
 
 
-def drift_fields(res, centres, lo, hi):
+def drift_fields(res, centres, lo, hi, how="ratio"):
     """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping."""
     with h5py.File(res["h5"], "r") as h:
         xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
@@ -340,7 +350,7 @@ def drift_fields(res, centres, lo, hi):
     inside = (ix >= 0) & (ix < xe.size - 1) & (iy >= 0) & (iy < ye.size - 1)
     out = {}
     for q, s in res["_samples"].items():
-        means = bin_means(s)
+        means = bin_means(s, how)
         v = np.full(len(centres), np.nan)
         v[inside] = means[iy[inside], ix[inside]]
         fallback = ~np.isfinite(v)
@@ -381,7 +391,7 @@ def check_target(target):
     return tree
 
 
-def write_target(target, res, source_arg, json_path=None, fields=False):
+def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="ratio"):
     """Checks TARGET and the drifts against the bulk model's range, then writes
     TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
     lambdaP); returns their paths. Nothing is written when a check fails (InputError)."""
@@ -416,12 +426,13 @@ def write_target(target, res, source_arg, json_path=None, fields=False):
     res = dict(res, bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
     if fields:
-        fs = drift_fields(dict(res, _samples=sel), centres, lo, DRIFT_MAX)
+        fs = drift_fields(dict(res, _samples=sel), centres, lo, DRIFT_MAX, field_mean)
         res["fields"] = {}
+        res["field_mean"] = field_mean
         for q, f in fs.items():
             name = DRIFTS[q][0]
             fp = os.path.join(target, "constant", name)
-            files.append((fp, field_text(name, f["values"], source)))
+            files.append((fp, field_text(name, f["values"], f"{source}, field mean {field_mean}")))
             res["fields"][name] = dict({k: v for k, v in f.items() if k != "values"}, file=fp)
     files += [(path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")]
     for p, body in files:
@@ -446,17 +457,22 @@ def main(argv=None):
     ap.add_argument("--fields", action="store_true",
                     help="with --target: also the drift fields constant/lambdaU, lambdaW, lambdaP "
                     "on the target's mesh, and drifts { fields on; }")
+    ap.add_argument("--field-mean", default="ratio",
+                    help="--fields: per bin the weighted time mean of the ratios (ratio, default) "
+                    "or the wls slope of its windows (wls)")
     a = ap.parse_args(argv)
     try:
         if a.fields and not a.target:
             raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
+        if a.field_mean not in FIELD_MEANS:
+            raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(FIELD_MEANS)}")
         if a.target:
             check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
         print(table(res))
         if a.target:
-            for p in write_target(a.target, res, a.source, a.json, a.fields):
+            for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean):
                 print(f"wrote {p}")
             if a.fields:
                 with open(a.json or bulkprops.path(a.target) + ".calibration.json") as f:

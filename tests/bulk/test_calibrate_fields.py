@@ -28,7 +28,9 @@ FLOWING = 0.1  # 0.108 m/s: drops the slow bins (u_s 0.06-0.10), leaving some bi
 # (label, --windows, alpha_s of the target): the windows 0-0.06 s (3) leave one bin without a
 # flowing window; alpha_s 0.005 makes the range lambda >= 0.005025 (alpha_s + lambda alpha_f >=
 # 0.01), which the single window 0-0.02 s crosses in some bins (lambda_u down to -0.03).
-RUNS = (("time mean, fallback", "0:0.06", 0.6), ("clipped", "0:0.02", 0.005))
+# --field-mean wls: per bin sum_t w x y / sum_t w x^2 instead of the ratios' mean.
+RUNS = (("time mean, fallback", "0:0.06", 0.6, "ratio"), ("clipped", "0:0.02", 0.005, "ratio"),
+        ("wls per bin", "0:0.06", 0.6, "wls"))
 
 
 def target_case(case, blockmesh, alpha):
@@ -56,7 +58,7 @@ boundary
         sys.exit(f"blockMesh failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
 
 
-def expected(h5, constants, windows):
+def expected(h5, constants, windows, how):
     """Per drift the cell values recomputed from the extraction: the wls selection (valid mask,
     alpha_s >= 0.1, solid speed >= FLOWING sqrt(g H), particle-equivalent weights), per bin
     sum_t w lambda / sum_t w, looked up at the cell centres of the uniform target mesh."""
@@ -67,17 +69,22 @@ def expected(h5, constants, windows):
     win = (d["windows"]["t0"] >= t0 - 1e-9) & (d["windows"]["t1"] <= t1 + 1e-9)
     flowing = (win[:, None, None] & (f["alpha_s"] >= 0.1) &
                (np.hypot(f["u_s"], f["w_s"]) >= FLOWING * np.sqrt(9.81 * H)))
-    ratios = {"lambda_u": (f["u_f"] / f["u_s"], valid["lambda_u"]),
-              "lambda_w": (f["w_f"] / f["w_s"], valid["lambda_w"]),
-              "lambda_p": ((f["p_f"] / dd.RHO_F) / (f["p_s"] / dd.RHO_S),
-                           valid["lambda_p_density"])}
+    pairs = {"lambda_u": (f["u_s"], f["u_f"], valid["lambda_u"]),
+             "lambda_w": (f["w_s"], f["w_f"], valid["lambda_w"]),
+             "lambda_p": (f["p_s"] / dd.RHO_S, f["p_f"] / dd.RHO_F, valid["lambda_p_density"])}
     xc = (np.arange(NX) + 0.5) * LX / NX
     yc = (np.arange(NY) + 0.5) * LY / NY
     out, bins = {}, {}
-    for q, (r, v) in ratios.items():
+    for q, (xs, ys, v) in pairs.items():
+        r = ys / xs
         m = flowing & v & np.isfinite(r) & (w > 0)
-        den = np.where(m, w, 0).sum(axis=0)
-        mean = np.where(m, w * np.nan_to_num(r), 0).sum(axis=0) / np.where(den > 0, den, np.nan)
+        if how == "wls":
+            num = np.where(m, w * xs * ys, 0).sum(axis=0)
+            den = np.where(m, w * xs * xs, 0).sum(axis=0)
+        else:
+            num = np.where(m, w * np.nan_to_num(r), 0).sum(axis=0)
+            den = np.where(m, w, 0).sum(axis=0)
+        mean = num / np.where(den > 0, den, np.nan)
         cells = np.empty(NX * NY)
         for j in range(NY):
             for i in range(NX):
@@ -89,14 +96,14 @@ def expected(h5, constants, windows):
     return out, bins
 
 
-def run(check, work, case, h5, blockmesh, label, windows, alpha):
+def run(check, work, case, h5, blockmesh, label, windows, alpha, how):
     """calibrate_drifts.py --fields onto a fresh target; checks every cell. Returns the counts."""
     lo = (0.01 - alpha) / (1 - alpha)  # alpha_s + lambda alpha_f >= 0.01
-    target = os.path.join(work, "bulk_target_" + windows.replace(":", "-"))
+    target = os.path.join(work, "bulk_target_" + label.replace(" ", "_").replace(",", ""))
     target_case(target, blockmesh, alpha)
     cmd = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
            "--target", target, "--fields", "--flowing-factor", str(FLOWING), "--windows", windows,
-           "--bootstrap", "50"]
+           "--bootstrap", "50", "--field-mean", how]
     r = subprocess.run(cmd, capture_output=True, text=True)
     print(r.stdout + r.stderr)
     check(r.returncode == 0, f"{label}: calibrate_drifts.py --fields exits 0 (got {r.returncode})")
@@ -105,7 +112,7 @@ def run(check, work, case, h5, blockmesh, label, windows, alpha):
     with open(os.path.join(target, "constant", "bulkProperties.calibration.json")) as f:
         j = json.load(f)
     consts = {q: j["drifts"][q]["value"] for q in cd.DRIFTS}
-    want, empty_bins = expected(h5, consts, windows)
+    want, empty_bins = expected(h5, consts, windows, how)
     clipped = 0
     for q, (key, *_) in cd.DRIFTS.items():
         path = os.path.join(target, "constant", key)
@@ -115,7 +122,7 @@ def run(check, work, case, h5, blockmesh, label, windows, alpha):
         n_clip = int(((want[q] < lo) | (want[q] > 1e3)).sum())
         err = float(np.max(np.abs(got - clip)))
         check(err <= 1e-12 * max(1.0, float(np.max(np.abs(clip)))),
-              f"{label}: {key}: every cell equals its bin's weighted time mean (the constant "
+              f"{label}: {key}: every cell equals its bin's {how} mean (the constant "
               f"{consts[q]:.5g} outside the grid and in the {empty_bins[q]} bins without a "
               f"selected window), clipped to [{lo:.4g}, 1000]: max |diff| {err:.2e}")
         fj = j["fields"][key]
@@ -148,8 +155,8 @@ def main():
     dd.make(case, exe)
     h5 = os.path.join(case, cd.H5_IN_CASE)
     counts = {}
-    for label, windows, alpha in RUNS:
-        empty, clipped, cmd = run(check, work, case, h5, blockmesh, label, windows, alpha)
+    for label, windows, alpha, how in RUNS:
+        empty, clipped, cmd = run(check, work, case, h5, blockmesh, label, windows, alpha, how)
         counts[label] = (empty, clipped)
     check(counts[RUNS[0][0]][0] > 0, f"bins without a selected window exist (the fallback is "
           f"exercised): {counts[RUNS[0][0]][0]}")
@@ -157,6 +164,10 @@ def main():
           f"{counts[RUNS[1][0]][1]}")
 
     # Refusals: --fields without --target, a target without a mesh; nothing written.
+    r = subprocess.run(cmd[:3] + ["--target", os.path.join(work, "bulk_target_clipped"), "--fields",
+                        "--field-mean", "median"], capture_output=True, text=True)
+    check(r.returncode == 2 and "--field-mean median" in r.stderr, f"--field-mean median: exit "
+          f"{r.returncode}; {r.stderr.strip()}")
     r = subprocess.run(cmd[:3] + ["--fields"], capture_output=True, text=True)
     check(r.returncode == 2 and "--target" in r.stderr, f"--fields without --target: exit "
           f"{r.returncode}; {r.stderr.strip()}")
