@@ -75,7 +75,9 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
     vmax = max(vmax, v);
     if (bad(v)) ++cells;
   }
+  // Coupled faces (processor, cyclic) only interpolate cells already counted.
   forAll(f->boundaryField(), patchi) {
+    if (f->boundaryField()[patchi].coupled()) continue;
     forAll(f->boundaryField()[patchi], facei) {
       const scalar v = f->boundaryField()[patchi][facei];
       vmin = min(vmin, v);
@@ -83,17 +85,22 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
       if (bad(v)) ++faces;
     }
   }
+  // Counts and span over all ranks, so that a parallel run refuses (and reports) as a serial one.
+  reduce(cells, sumOp<label>());
+  reduce(faces, sumOp<label>());
+  reduce(vmin, minOp<scalar>());
+  reduce(vmax, maxOp<scalar>());
+  const label nCells = returnReduce(f->size(), sumOp<label>());
+  const fileName file = U_.time().rootPath() / U_.time().globalCaseName() / "constant" / name;
   if (cells || faces) {
-    FatalErrorInFunction << f->objectPath() << ": field " << name << " has " << cells << " of "
-                         << f->size() << " cells and " << faces
-                         << " boundary faces outside the allowed range [" << lo << ", " << hi
-                         << "] (alpha_s + " << name
+    FatalErrorInFunction << file << ": field " << name << " has " << cells << " of " << nCells
+                         << " cells and " << faces << " boundary faces outside the allowed range ["
+                         << lo << ", " << hi << "] (alpha_s + " << name
                          << " alpha_f >= " << mixflow::bulk::kDriftDenominatorMin << ", |" << name
                          << "| <= 1000, alpha_s " << alphaS_ << "); its values span [" << vmin
                          << ", " << vmax << "]" << exit(FatalError);
   }
-  Info << "bulkMixture: drift field " << f->objectPath() << ", range [" << vmin << ", " << vmax
-       << "]" << endl;
+  Info << "bulkMixture: drift field " << file << ", range [" << vmin << ", " << vmax << "]" << endl;
   return f;
 }
 
