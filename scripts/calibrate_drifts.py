@@ -21,7 +21,7 @@ CASE/constant/bulkProperties (created if absent; only the drifts entries change)
 --fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
 the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell the
 time mean over the selected windows of the per-bin ratio (u_f / u_s, ...) of the bin holding the
-cell centre, weighted as the wls estimator weighs the bins (the --weights weight); the constant
+cell centre, weighted by the samples' weight w (--weights, as in the wls estimator); the constant
 estimate where the bin has no selected window or the cell lies outside the grid; clipped into the
 bulk model's range (the count is printed). --field-mean wls: per bin the wls slope of its windows
 instead of the ratios' mean. Fixed in time: the first form of stage C.
