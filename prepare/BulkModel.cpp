@@ -33,6 +33,10 @@ Schema makeSchema() {
               .alsoAllowed(drift),
           scalarParam("drifts.lambdaP", b.lambdaP, Range::closed(-1e3, 1e3), "", "p_f = λ_p p_s")
               .alsoAllowed(drift),
+          switchParam("drifts.fields", b.driftFields,
+                      "take λ_u, λ_w, λ_p cell by cell from the volScalarFields constant/lambdaU, "
+                      "lambdaW, lambdaP (`calibrate_drifts.py --fields`; each cell held to the "
+                      "constants' range); off: the constants"),
           textParam("drifts.source", b.driftSource,
                     "what set the drifts (scripts/calibrate_drifts.py records the case and its "
                     "file's sha256)"),
@@ -107,6 +111,18 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   b.lambdaW = readDrift(dr, "lambdaW", b.solidFraction);
   b.lambdaP = readDrift(dr, "lambdaP", b.solidFraction);
   b.driftSource = sc.text(dr, "drifts.source");
+  b.driftFields = sc.flag(dr, "drifts.fields");
+  if (b.driftFields) {
+    // The values are checked cell by cell by mixflowBulkFoam, which has the mesh; here only that
+    // the files are there, so that a case without them fails before anything is written.
+    for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
+      const fs::path field = fs::path(caseDir) / "constant" / f;
+      if (!fs::exists(field))
+        dr.fail("fields", "on, but there is no " + field.string() +
+                              " (a volScalarField; scripts/calibrate_drifts.py --fields writes "
+                              "lambdaU, lambdaW and lambdaP)");
+    }
+  }
 
   const Dictionary s = d.subDictOrEmpty("solid");
   sc.allowOnly(s, "solid");

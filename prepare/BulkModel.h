@@ -18,6 +18,10 @@ struct BulkModel {
   // Drifts u_f = lambdaU u_s, w_f = lambdaW w_s, p_f = lambdaP p_s (kinematic pressures).
   double lambdaU = 1, lambdaW = 1, lambdaP = 1;
   std::string driftSource = "default (lambda = 1)";  // what set them (mixflowCalibrate records it)
+  // drifts.fields on: the solver takes lambdaU, lambdaW, lambdaP cell by cell from the fields
+  // constant/lambdaU, ... (stage C of docs/calibration.md); the constants above then only set
+  // prepare's time-step bound.
+  bool driftFields = false;
   // Solid: Coulomb-viscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik et al.
   // nu_s and tanPhi: calibrated on the dry scene P against its DEM run (docs/calibration.md).
   double solidViscosity = 0.02;                   // nu_s (m2/s, kinematic as in the paper)

@@ -252,7 +252,12 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
     << "        solidDensity        " << num(b.solidDensity) << ";\n"
     << "        fluidDensity        " << num(r.density) << ";\n"
     << "        airDensity          " << num(c.air.density) << ";\n"
-    << "        relaxation          " << num(b.relaxation) << ";\n    }\n";
+    << "        relaxation          " << num(b.relaxation) << ";\n";
+  // Only with fields, so that the constant drifts' files stay as they were.
+  if (b.driftFields)
+    s << "        driftFields         on;   // constant/lambdaU, lambdaW, lambdaP\n"
+      << "        yieldPressure       " << b.yieldPressure << ";   // kappa_y per cell\n";
+  s << "    }\n";
   return s.str();
 }
 
@@ -392,10 +397,14 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
     const BulkModel& b = c.bulk;
     os << "[mixflowPrepare] bulk model (mixflowBulkFoam): alpha_s " << num(b.solidFraction)
        << ", rho* " << num(b.mixtureDensity) << " kg/m3, drifts (" << num(b.lambdaU) << ", "
-       << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource << "; solid nu_s "
-       << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi) << ", cohesion "
-       << num(b.cohesion) << " Pa, m_y " << num(b.regularisation) << " s (" << b.yieldPressure
-       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
+       << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource
+       << (b.driftFields
+               ? " (the solver takes the fields constant/lambdaU, lambdaW, lambdaP instead)"
+               : "")
+       << "; solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
+       << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation) << " s ("
+       << b.yieldPressure << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3)
+       << " Pa s; bed "
        << (b.basalLaw == "coulomb" ? "Coulomb sliding, tanDelta " + num(b.tanDelta) : b.basalLaw)
        << "\n";
   }

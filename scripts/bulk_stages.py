@@ -2,7 +2,8 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--estimators wls,median] [--reference runs/reference] [--solid-from cases/P-bulk] [--work runs/bulk-stages]
+          [--estimators wls,median] [--field-mean wls] [--reference runs/reference]
+          [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
 
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
@@ -13,7 +14,9 @@ the bulk model's default); then stage A's case with the constant drifts calibrat
 CFD-DEM reference run's extraction, once per --estimators entry (stage B: `scripts/calibrate_drifts.py
 REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B) or median (key
 B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
-scripts/mixture_lambdas.py) and run again (`./Allrun`). Against the reference's granular front at the end (its
+scripts/mixture_lambdas.py) and run again (`./Allrun`); stage C: stage A's case with the drift
+fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
+docs/calibration.md "Stage C"). Against the reference's granular front at the end (its
 postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
 and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
 """
@@ -98,6 +101,9 @@ def main():
     ap.add_argument("--estimators", default="wls,median",
                     help="calibrate_drifts.py --estimator of stage B, one run each (wls: key B, "
                     "median: key B_median)")
+    ap.add_argument("--field-mean", default="wls",
+                    help="stage C: calibrate_drifts.py --field-mean (wls or ratio; ratio lets W&P's "
+                    "lambda_w reach the range limit and the run diverge)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
@@ -139,6 +145,23 @@ def main():
         print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
               f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); stage B "
               + ", ".join(bs), flush=True)
+        # Stage C: stage A's case (its mesh copied along) with the drift fields on that mesh.
+        case_c = fresh_copy(case_a, os.path.join(a.work, "C", scene))
+        cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
+                   "--target", case_c, "--flowing-factor", a.flowing_factor, "--fields",
+                   "--field-mean", a.field_mean],
+                  fatal=False)
+        if cal is None:  # the constant fallback outside the range (as stage B)
+            rec["C"] = {"error": "calibrate_drifts.py --fields refused (its message above)"}
+            continue
+        rec["C_calibration"] = cal.strip().splitlines()[-3:]
+        with open(os.path.join(case_c, "constant", "bulkProperties.calibration.json")) as f:
+            rec["C_fields"] = json.load(f)["fields"]
+        run(["./Allrun", "1"], cwd=case_c)
+        rec["C"] = result(case_c, ref_front)
+        print(f"{scene}: stage C {rec['C']['front_m']:.3f} m "
+              f"({100 * rec['C']['front_error']:+.0f} %); bulk CPU {rec['C']['solver_cpu_s']} s",
+              flush=True)
     outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 

@@ -6,6 +6,7 @@ constant/bulkProperties `drifts` block.
 usage: /usr/bin/python3 scripts/calibrate_drifts.py SOURCE [--target CASE] [--estimator wls|median]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
+           [--fields]
 
 SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflowExtract) or an
 .h5 file. The bins used (the same for both estimators) are, in the windows inside [T0, T1]: the
@@ -17,6 +18,13 @@ the per-bin ratios. Uncertainty: the 16-84 % interval of the estimate over a boo
 spatial bins (each drawn with all its windows). Prints a table; with --target writes
 CASE/constant/bulkProperties (created if absent; only the drifts entries change) and the JSON
 (default CASE/constant/bulkProperties.calibration.json). Bad input exits 2 before writing.
+--fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
+the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell the
+time mean over the selected windows of the per-bin ratio (u_f / u_s, ...) of the bin holding the
+cell centre, weighted by the samples' weight w (--weights, as in the wls estimator); the constant
+estimate where the bin has no selected window or the cell lies outside the grid; clipped into the
+bulk model's range (the count is printed). --field-mean wls: per bin the wls slope of its windows
+instead of the ratios' mean. Fixed in time: the first form of stage C.
 """
 
 import argparse
@@ -24,8 +32,10 @@ import hashlib
 import json
 import math
 import os
+import re
 import sys
 
+import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
@@ -146,7 +156,8 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
                 f"alpha_s >= {min_solid_fraction:g} (--min-solid-fraction, allowed [0, 1)) and "
                 f"solid speed >= {speed_min:.4g} m/s = {flowing_factor:g} sqrt(g H), H "
                 f"{H:g} m (--flowing-factor, allowed > 0)")
-        out[q] = {"x": x[m], "y": y[m], "w": wt[m], "block": block[m], "window": np.nonzero(m)[0]}
+        out[q] = {"x": x[m], "y": y[m], "w": wt[m], "block": block[m], "window": np.nonzero(m)[0],
+                  "mask": m, "x_all": x, "y_all": y, "w_all": wt}
     used = np.unique(np.concatenate([s["window"] for s in out.values()]))
     info = {"flowing_speed_m_s": speed_min, "sample_height_m": H, "g_m_s2": G,
             "rho_s_kg_m3": rho_s, "rho_f_kg_m3": rho_f,
@@ -217,6 +228,7 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
             raise InputError(f"{h5}: {q}: the selected bins' {DRIFTS[q][2]} are all 0; no slope")
         r["value"] = r[estimator]["value"]
         res["drifts"][q] = r
+    res["_samples"] = sel  # the full (window, y, x) selection, for --fields
     return res
 
 
@@ -260,12 +272,107 @@ def _solid_fraction(target, tree, res):
     return res["selection"]["source_sample_solid_fraction"], "the source's sample_solid_fraction"
 
 
-def bulk_properties_text(path, drifts, source, solid_fraction=None):
+def bulk_properties_text(path, drifts, source, solid_fraction=None, fields=False):
     """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; lambdaP; source; }
-    set through foamdict.edit_dict: every other byte of an existing file stays as it is."""
+    (and `fields on;` with FIELDS) set through foamdict.edit_dict: every other byte of an existing
+    file stays as it is."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
+    if fields:
+        entries["fields"] = "on"
     entries["source"] = '"' + source.replace('"', "'") + '"'
     return bulkprops.block_text(path, "drifts", entries)
+
+
+FIELD_MEANS = ("ratio", "wls")
+
+
+def bin_means(s, how="ratio"):
+    """Per spatial bin (y, x) over the selected windows, NaN where the bin has none: the weighted
+    time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), or the wls slope of the bin's
+    windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less)."""
+    m = s["mask"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(m, s["x_all"], 0.0)
+        y = np.where(m, s["y_all"], 0.0)
+        w = np.where(m, s["w_all"], 0.0)
+        if how == "wls":
+            num, den = (w * x * y).sum(axis=0), (w * x * x).sum(axis=0)
+        else:
+            num = (w * np.where(m, y / np.where(m, x, 1.0), 0.0)).sum(axis=0)
+            den = w.sum(axis=0)
+        return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.nan)
+
+
+def _foam_list(path, what):
+    """The list body of an ASCII polyMesh file: (count, text after its opening parenthesis)."""
+    with open(path) as f:
+        text = f.read()
+    if re.search(r"format\s+binary", text):
+        raise InputError(f"{path}: binary; --fields reads ASCII meshes (blockMesh's default)")
+    head = re.search(r"\}\s*(?://[^\n]*\n|\s)*?(\d+)\s*\(", text)
+    if not head:
+        raise InputError(f"{path}: no {what} list")
+    return int(head.group(1)), text[head.end():]
+
+
+def cell_centres(target):
+    """The cell centres (x, y) of TARGET's mesh (constant/polyMesh, ASCII): the mean of each
+    cell's vertices, exact for the parallelepiped cells blockMesh makes."""
+    mesh = os.path.join(target, "constant", "polyMesh")
+    names = ("points", "faces", "owner", "neighbour")
+    missing = [n for n in names if not os.path.isfile(os.path.join(mesh, n))]
+    if missing:
+        raise InputError(f"{mesh}: no {', '.join(missing)} (--fields writes the drifts on the "
+                         "target's mesh: run mixflowPrepare and blockMesh on it first)")
+    n, body = _foam_list(os.path.join(mesh, "points"), "points")
+    pts = np.array([[float(v) for v in p.split()] for p in re.findall(r"\(([^()]*)\)", body)[:n]])
+    n, body = _foam_list(os.path.join(mesh, "faces"), "faces")
+    faces = [[int(v) for v in f.split()] for f in re.findall(r"\d+\(([^()]*)\)", body)[:n]]
+    owner = [int(v) for v in _foam_list(os.path.join(mesh, "owner"), "owner")[1]
+             .split(")")[0].split()]
+    neigh = [int(v) for v in _foam_list(os.path.join(mesh, "neighbour"), "neighbour")[1]
+             .split(")")[0].split()]
+    ncells = max(owner) + 1
+    cells = [set() for _ in range(ncells)]
+    for fi, f in enumerate(faces):
+        cells[owner[fi]].update(f)
+        if fi < len(neigh):
+            cells[neigh[fi]].update(f)
+    return np.array([pts[sorted(c)].mean(axis=0)[:2] for c in cells])
+
+
+def drift_fields(res, centres, lo, hi, how="ratio"):
+    """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping."""
+    with h5py.File(res["h5"], "r") as h:
+        xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
+    ix = np.searchsorted(xe, centres[:, 0], side="right") - 1
+    iy = np.searchsorted(ye, centres[:, 1], side="right") - 1
+    inside = (ix >= 0) & (ix < xe.size - 1) & (iy >= 0) & (iy < ye.size - 1)
+    out = {}
+    for q, s in res["_samples"].items():
+        means = bin_means(s, how)
+        v = np.full(len(centres), np.nan)
+        v[inside] = means[iy[inside], ix[inside]]
+        fallback = ~np.isfinite(v)
+        v[fallback] = res["drifts"][q]["value"]
+        clipped = (v < lo) | (v > hi)
+        v = np.clip(v, lo, hi)
+        out[q] = {"values": v, "cells": int(v.size), "from_bins": int((~fallback).sum()),
+                  "fallback_cells": int(fallback.sum()), "clipped_cells": int(clipped.sum()),
+                  "bins_with_value": int(np.isfinite(means).sum()), "bins": int(means.size),
+                  "min": float(v.min()), "max": float(v.max())}
+    return out
+
+
+def field_text(name, values, source):
+    body = "\n".join(f"{v:.17g}" for v in values)
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       "
+            f"volScalarField;\n    location    \"constant\";\n    object      {name};\n}}\n"
+            f"// {source}\n// per cell: the weighted time mean of the bin holding its centre (the "
+            "constant estimate where none), clipped to the bulk model's range\n\n"
+            f"dimensions      [0 0 0 0 0 0 0];\n\ninternalField   nonuniform List<scalar>\n"
+            f"{len(values)}\n(\n{body}\n)\n;\n\nboundaryField\n{{\n"
+            "    \".*\" { type zeroGradient; }\n    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
 
 
 def check_target(target):
@@ -284,11 +391,12 @@ def check_target(target):
     return tree
 
 
-def write_target(target, res, source_arg, json_path=None):
+def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="ratio"):
     """Checks TARGET and the drifts against the bulk model's range, then writes
-    TARGET/constant/bulkProperties and the JSON; returns their paths. Nothing is written when a
-    check fails (InputError)."""
+    TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
+    lambdaP); returns their paths. Nothing is written when a check fails (InputError)."""
     tree = check_target(target)
+    centres = cell_centres(target) if fields else None
     path = bulkprops.path(target)
     try:
         alpha, alpha_from = _solid_fraction(target, tree, res)
@@ -308,15 +416,28 @@ def write_target(target, res, source_arg, json_path=None):
     source = (f"calibrate_drifts.py: {where} sha256 {res['sha256']}, estimator "
               f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s")
     try:
-        text = bulk_properties_text(path, drifts, source)
+        text = bulk_properties_text(path, drifts, source, fields=fields)
     except DictError as e:
         raise InputError(f"{path}: {e}") from None
     json_path = json_path or path + ".calibration.json"
+    files = []
+    sel = res.get("_samples")
+    res = {k: v for k, v in res.items() if not k.startswith("_")}
     res = dict(res, bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
-    for p, body in ((path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")):
+    if fields:
+        fs = drift_fields(dict(res, _samples=sel), centres, lo, DRIFT_MAX, field_mean)
+        res["fields"] = {}
+        res["field_mean"] = field_mean
+        for q, f in fs.items():
+            name = DRIFTS[q][0]
+            fp = os.path.join(target, "constant", name)
+            files.append((fp, field_text(name, f["values"], f"{source}, field mean {field_mean}")))
+            res["fields"][name] = dict({k: v for k, v in f.items() if k != "values"}, file=fp)
+    files += [(path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")]
+    for p, body in files:
         bulkprops.write_text(p, body)
-    return path, json_path
+    return [p for p, _ in files]
 
 
 def main(argv=None):
@@ -333,19 +454,37 @@ def main(argv=None):
     ap.add_argument("--bootstrap", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", help="JSON of the result (default next to bulkProperties)")
+    ap.add_argument("--fields", action="store_true",
+                    help="with --target: also the drift fields constant/lambdaU, lambdaW, lambdaP "
+                    "on the target's mesh, and drifts { fields on; }")
+    ap.add_argument("--field-mean", default="ratio",
+                    help="--fields: per bin the weighted time mean of the ratios (ratio, default) "
+                    "or the wls slope of its windows (wls)")
     a = ap.parse_args(argv)
     try:
+        if a.fields and not a.target:
+            raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
+        if a.field_mean not in FIELD_MEANS:
+            raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(FIELD_MEANS)}")
         if a.target:
             check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
         print(table(res))
         if a.target:
-            for p in write_target(a.target, res, a.source, a.json):
+            for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean):
                 print(f"wrote {p}")
+            if a.fields:
+                with open(a.json or bulkprops.path(a.target) + ".calibration.json") as f:
+                    for name, r in json.load(f)["fields"].items():
+                        print(f"{name}: {r['cells']} cells, {r['from_bins']} from their bin "
+                              f"({r['bins_with_value']} of {r['bins']} bins have a value), "
+                              f"{r['fallback_cells']} the constant, {r['clipped_cells']} clipped "
+                              f"into the allowed range; values [{r['min']:.4g}, {r['max']:.4g}]")
         elif a.json:
             with open(a.json, "w") as f:
-                json.dump(res, f, indent=1, sort_keys=True)
+                json.dump({k: v for k, v in res.items() if not k.startswith("_")}, f, indent=1,
+                          sort_keys=True)
             print(f"wrote {a.json}")
     except InputError as e:
         print(f"calibrate_drifts.py: error: {e}", file=sys.stderr)

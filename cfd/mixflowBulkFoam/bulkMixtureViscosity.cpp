@@ -42,6 +42,136 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
   rhoFluid_ = coeffs_.get<scalar>("fluidDensity");
   rhoAir_ = coeffs_.get<scalar>("airDensity");
   relaxation_ = coeffs_.get<scalar>("relaxation");
+  if (coeffs_.lookupOrDefault<Switch>("driftFields", false)) {
+    buoyancyReducedYield_ = coeffs_.get<word>("yieldPressure") == "buoyancyReduced";
+    readDriftFields();
+  } else {
+    lambdaU_.clear();
+    lambdaW_.clear();
+    lambdaP_.clear();
+    solidFactors_.clear();
+    fluidFactors_.clear();
+  }
+}
+
+Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDriftField(
+    const word& name) const {
+  autoPtr<volScalarField> f(
+      new volScalarField(IOobject(name, U_.time().constant(), U_.mesh(), IOobject::MUST_READ,
+                                  IOobject::NO_WRITE, false),
+                         U_.mesh()));
+  f->correctBoundaryConditions();  // coupled patches: the face values of the cells read
+  // The constants' range (prepare/BulkModel.cpp): Lambda = 1 / (alpha_s + lambda alpha_f) finite.
+  const scalar lo = alphaS_ < 1
+                        ? max(-1e3, (mixflow::bulk::kDriftDenominatorMin - alphaS_) / (1 - alphaS_))
+                        : -1e3;
+  const scalar hi = 1e3;
+  auto bad = [&](scalar v) { return !(v >= lo && v <= hi); };
+  label cells = 0, faces = 0;
+  scalar vmin = GREAT, vmax = -GREAT;
+  forAll(*f, celli) {
+    const scalar v = (*f)[celli];
+    vmin = min(vmin, v);
+    vmax = max(vmax, v);
+    if (bad(v)) ++cells;
+  }
+  // Coupled faces (processor, cyclic) only interpolate cells already counted.
+  forAll(f->boundaryField(), patchi) {
+    if (f->boundaryField()[patchi].coupled()) continue;
+    forAll(f->boundaryField()[patchi], facei) {
+      const scalar v = f->boundaryField()[patchi][facei];
+      vmin = min(vmin, v);
+      vmax = max(vmax, v);
+      if (bad(v)) ++faces;
+    }
+  }
+  // Counts and span over all ranks, so that a parallel run refuses (and reports) as a serial one.
+  reduce(cells, sumOp<label>());
+  reduce(faces, sumOp<label>());
+  reduce(vmin, minOp<scalar>());
+  reduce(vmax, maxOp<scalar>());
+  const label nCells = returnReduce(f->size(), sumOp<label>());
+  const fileName file = U_.time().rootPath() / U_.time().globalCaseName() / "constant" / name;
+  if (cells || faces) {
+    FatalErrorInFunction << file << ": field " << name << " has " << cells << " of " << nCells
+                         << " cells and " << faces << " boundary faces outside the allowed range ["
+                         << lo << ", " << hi << "] (alpha_s + " << name
+                         << " alpha_f >= " << mixflow::bulk::kDriftDenominatorMin << ", |" << name
+                         << "| <= 1000, alpha_s " << alphaS_ << "); its values span [" << vmin
+                         << ", " << vmax << "]" << exit(FatalError);
+  }
+  Info << "bulkMixture: drift field " << file << ", range [" << vmin << ", " << vmax << "]" << endl;
+  return f;
+}
+
+void Foam::viscosityModels::bulkMixture::readDriftFields() {
+  lambdaU_ = readDriftField("lambdaU");
+  lambdaW_ = readDriftField("lambdaW");
+  lambdaP_ = readDriftField("lambdaP");
+  // u_s = diag(Lambda_u, Lambda_w, Lambda_u) U and u_f = diag(lambda_u, lambda_w, lambda_u) u_s
+  // with the drifts of each cell and face, once: the fields and alpha_s do not change in time.
+  auto factors = [&](const word& name) {
+    return autoPtr<volVectorField>(
+        new volVectorField(IOobject(name, U_.time().timeName(), U_.mesh(), IOobject::NO_READ,
+                                    IOobject::NO_WRITE, false),
+                           U_.mesh(), dimensionedVector("one", dimless, vector::one)));
+  };
+  solidFactors_ = factors("solidVelocityFactors");
+  fluidFactors_ = factors("fluidVelocityFactors");
+  auto set = [&](const mixflow::bulk::Drifts& d, vector& s, vector& f) {
+    const mixflow::bulk::LambdaCoefficients c = mixflow::bulk::lambdaCoefficients(alphaS_, d);
+    s = vector(c.u, c.w, c.u);
+    f = vector(d.lambdaU * s.x(), d.lambdaW * s.y(), d.lambdaU * s.z());
+  };
+  volVectorField& sf = *solidFactors_;
+  volVectorField& ff = *fluidFactors_;
+  forAll(sf, celli) set(drifts(celli), sf[celli], ff[celli]);
+  forAll(sf.boundaryField(), patchi) {
+    forAll(sf.boundaryField()[patchi], facei) {
+      set(drifts(patchi, facei), sf.boundaryFieldRef()[patchi][facei],
+          ff.boundaryFieldRef()[patchi][facei]);
+    }
+  }
+}
+
+mixflow::bulk::Drifts Foam::viscosityModels::bulkMixture::drifts(label celli) const {
+  if (!driftFields()) return drifts_;
+  return {(*lambdaU_)[celli], (*lambdaW_)[celli], (*lambdaP_)[celli]};
+}
+
+mixflow::bulk::Drifts Foam::viscosityModels::bulkMixture::drifts(label patchi, label facei) const {
+  if (!driftFields()) return drifts_;
+  return {lambdaU_->boundaryField()[patchi][facei], lambdaW_->boundaryField()[patchi][facei],
+          lambdaP_->boundaryField()[patchi][facei]};
+}
+
+Foam::scalar Foam::viscosityModels::bulkMixture::yieldFromMixturePressure(
+    const mixflow::bulk::Drifts& d) const {
+  // With fields kappa_y follows lambda_p as prepare's yieldPressureFactor does for the constant.
+  const scalar kappa = driftFields() && buoyancyReducedYield_
+                           ? 1.0 - rhoFluid_ * d.lambdaP / rhoSolid_
+                           : yieldPressureFactor_;
+  return kappa / mixflow::bulk::lambdaCoefficients(alphaS_, d).p;
+}
+
+Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::pressureFactorField(
+    const bool fluid) const {
+  tmp<volScalarField> t(new volScalarField(
+      IOobject(fluid ? "rhoFLambdaPByLambdaP" : "rhoSByLambdaP", U_.time().timeName(), U_.mesh(),
+               IOobject::NO_READ, IOobject::NO_WRITE, false),
+      U_.mesh(), dimensionedScalar("zero", dimDensity, 0.0)));
+  auto factor = [&](const mixflow::bulk::Drifts& d) {
+    const scalar lp = mixflow::bulk::lambdaCoefficients(alphaS_, d).p;
+    return fluid ? rhoFluid_ * d.lambdaP / lp : rhoSolid_ / lp;
+  };
+  volScalarField& f = t.ref();
+  forAll(f, celli) f[celli] = factor(drifts(celli));
+  forAll(f.boundaryField(), patchi) {
+    forAll(f.boundaryField()[patchi], facei) {
+      f.boundaryFieldRef()[patchi][facei] = factor(drifts(patchi, facei));
+    }
+  }
+  return t;
 }
 
 Foam::vector Foam::viscosityModels::bulkMixture::solidVelocityFactors() const {
@@ -70,32 +200,37 @@ Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::mixturePress
 
 Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::calcNu() const {
   const vector fs = solidVelocityFactors(), ff = fluidVelocityFactors();
-  const volScalarField srSolid(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, fs)))));
+  const bool fields = driftFields();
+  const volScalarField srSolid(
+      sqrt(2.0) *
+      mag(symm(fvc::grad(fields ? cmptMultiply(U_, *solidFactors_) : cmptMultiply(U_, fs)))));
   // u_f = u_s without drifts: the second gradient is then the first.
   const tmp<volScalarField> tsrFluid =
-      ff == fs ? tmp<volScalarField>(srSolid)
-               : tmp<volScalarField>(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, ff)))));
+      fields
+          ? tmp<volScalarField>(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, *fluidFactors_)))))
+      : ff == fs ? tmp<volScalarField>(srSolid)
+                 : tmp<volScalarField>(sqrt(2.0) * mag(symm(fvc::grad(cmptMultiply(U_, ff)))));
   const volScalarField& srFluid = tsrFluid();
   const tmp<volScalarField> tpm = mixturePressure();
-  const scalar ps2yield =
-      yieldPressureFactor_ / mixflow::bulk::lambdaCoefficients(alphaS_, drifts_).p;
 
   tmp<volScalarField> tnu(new volScalarField(
       IOobject("nuBulk", U_.time().timeName(), U_.db(), IOobject::NO_READ, IOobject::NO_WRITE),
       U_.mesh(), dimensionedScalar("nu", dimViscosity, 0.0)));
   volScalarField& nu = tnu.ref();
-  auto pointwise = [&](scalar sS, scalar sF, scalar pm) {
-    const scalar nuS = mixflow::bulk::solidViscosity(solid_, sS, ps2yield * pm);
+  auto pointwise = [&](const mixflow::bulk::Drifts& d, scalar sS, scalar sF, scalar pm) {
+    const scalar nuS = mixflow::bulk::solidViscosity(solid_, sS, yieldFromMixturePressure(d) * pm);
     const scalar nuF = mixflow::bulk::fluidViscosity(fluid_, sF);
-    return mixflow::bulk::mixtureDiffusivity(alphaS_, drifts_, nuS, nuF);
+    return mixflow::bulk::mixtureDiffusivity(alphaS_, d, nuS, nuF);
   };
-  forAll(nu, celli) nu[celli] = pointwise(srSolid[celli], srFluid[celli], tpm()[celli]);
+  forAll(nu, celli) {
+    nu[celli] = pointwise(drifts(celli), srSolid[celli], srFluid[celli], tpm()[celli]);
+  }
   volScalarField::Boundary& nub = nu.boundaryFieldRef();
   forAll(nub, patchi) {
     forAll(nub[patchi], facei) {
       nub[patchi][facei] =
-          pointwise(srSolid.boundaryField()[patchi][facei], srFluid.boundaryField()[patchi][facei],
-                    tpm().boundaryField()[patchi][facei]);
+          pointwise(drifts(patchi, facei), srSolid.boundaryField()[patchi][facei],
+                    srFluid.boundaryField()[patchi][facei], tpm().boundaryField()[patchi][facei]);
     }
   }
   return tnu;

@@ -17,6 +17,12 @@ cohesive-arrest  lambda = 1, alpha_s 0.6, tanPhi 0 and a cohesion tau_c: the mix
               the kinetic energy must never exceed the potential energy released (no restart).
 drifting      lambda_u = lambda_w = 1.3 on the newtonian mixture: the drift stress runs, the mixture
               volume balance stays <= 1e-6 and the front differs from lambda = 1's.
+drift-fields  uniform drift fields constant/lambdaU, lambdaW, lambdaP (drifts { fields on; }) equal
+              to constant drifts (1.3, 0.8, 0.6; the default solid, tanPhi 0.45): identical to the
+              constant drifts' run bit for bit (time series and every written field file).
+drift-field-range  a lambdaW field with 3 cells at -2 (allowed >= -1.475 at alpha_s 0.6):
+              mixflowBulkFoam refuses it before the first step, naming constant/lambdaW, the
+              field, the count of cells, the allowed range and the field's span.
 closed-box    the newtonian mixture's column in a 0.3 x 0.15 m channel closed all round (outlet and
               top made walls, p_rgh fixed by a reference cell), 2 s: it collapses, runs up the
               end wall and sloshes. The mixture volume sum(alpha V) the solver logs every step
@@ -266,6 +272,8 @@ BAD = [
      ["constant/bulkProperties", "basal.tanDelta", "[0, 5]"]),
     ("basal law word", "basal { law slip; }\n",
      ["constant/bulkProperties", "basal.law", "coulomb"]),
+    ("drift fields without their files", "drifts { fields on; }\n",
+     ["constant/bulkProperties", "fields", "constant/lambdaU"]),
 ]
 
 
@@ -299,6 +307,83 @@ def drifting(a, work):
     ok &= lc.check(abs(fd - fr) > 1e-3 * fr,
                    f"the drift stress changes the front at {sd[-1]['time_s']:.2f} s: {fd:.5f} m "
                    f"against {fr:.5f} m with lambda = 1")
+    return ok
+
+
+def drift_field_file(case, name, internal):
+    """constant/NAME, a drift field (bulkProperties drifts { fields on; }): INTERNAL is
+    'uniform V' or a list of cell values."""
+    if not isinstance(internal, str):
+        internal = lc.fc.format_scalar_list(internal)
+    lc.fc.write_foam_file(case, "constant/" + name, "volScalarField", name,
+                          f"dimensions [0 0 0 0 0 0 0];\ninternalField {internal};\n"
+                          "boundaryField\n{\n    \".*\" { type zeroGradient; }\n"
+                          "    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
+
+
+FIELD_DRIFTS = {"lambdaU": 1.3, "lambdaW": 0.8, "lambdaP": 0.6}
+
+
+def drift_fields(a, work):
+    """Uniform drift fields equal to constant drifts: the run is the constant drifts' run bit for
+    bit (every time-series row and every written field file identical). The default solid (tanPhi
+    0.45: the yield pressure's kappa_y and Lambda_p take lambda_p per cell) and
+    lambda = (1.3, 0.8, 0.6), so each place the drifts enter is exercised."""
+    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    ref = bulk_case(work, "bulk_drift_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
+    fld = bulk_case(work, "bulk_drift_fields", WATER, f"drifts {{ {consts}fields on; }}\n", 0.3)
+    for k, v in FIELD_DRIFTS.items():
+        drift_field_file(fld, k, f"uniform {v:g}")
+    sr = lc.run_case(a, ref, solver=a.bulk_solver)
+    sf = lc.run_case(a, fld, solver=a.bulk_solver)
+    log = open(os.path.join(fld, "log.mixflowBulkFoam")).read()
+    ok = lc.check("drifts the fields constant/lambdaU" in log and "drift field" in log,
+                  "the fields run reads constant/lambdaU, lambdaW, lambdaP")
+    series = [open(os.path.join(c, "postProcessing/liquid/timeSeries.csv"), "rb").read()
+              for c in (ref, fld)]
+    ok &= lc.check(len(sr) > 10 and series[0] == series[1],
+                   f"time series: {len(sf)} rows against {len(sr)}, byte for byte identical: "
+                   f"{series[0] == series[1]} (front at the end {sf[-1]['front_bed_m']:.6f} m)")
+    times = field_times(ref)
+    differ = []
+    for t in times:
+        for name in sorted(os.listdir(os.path.join(ref, t))):
+            pr, pf = os.path.join(ref, t, name), os.path.join(fld, t, name)
+            if os.path.isfile(pr) and (not os.path.isfile(pf) or
+                                       open(pr, "rb").read() != open(pf, "rb").read()):
+                differ.append(f"{t}/{name}")
+    ok &= lc.check(times == field_times(fld) and not differ,
+                   f"written fields at {', '.join(times)} s byte for byte identical "
+                   f"(differing: {differ[:5] or 'none'})")
+    return ok
+
+
+def drift_field_range(a, work):
+    """A drift field with cells outside alpha_s + lambda alpha_f >= 0.01 is refused by
+    mixflowBulkFoam before the first step, naming the file, the field, the count and the range."""
+    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    case = bulk_case(work, "bulk_drift_field_range", WATER, f"drifts {{ {consts}fields on; }}\n",
+                     0.3)
+    for k, v in FIELD_DRIFTS.items():
+        drift_field_file(case, k, f"uniform {v:g}")  # mixflowPrepare wants the files
+    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    with open(os.path.join(case, "system/blockMeshDict")) as f:
+        nx, ny = (int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)", f.read()).groups())
+    values = [0.8] * (nx * ny)
+    for c in (5, 77, 1000):
+        values[c] = -2.0  # alpha_s 0.6: allowed lambda >= (0.01 - 0.6) / 0.4 = -1.475
+    drift_field_file(case, "lambdaW", values)
+    lc.fc.run([a.blockmesh], case, "log.blockMesh")
+    r = lc.subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True,
+                          env=lc.fc.run_env())
+    msg = r.stdout + r.stderr
+    want = ["constant/lambdaW", "field lambdaW", f"3 of {nx * ny} cells", "-1.475", "[-2, 0.8]"]
+    missing = [w for w in want if w not in msg]
+    line = next((ln for ln in msg.splitlines() if "lambdaW" in ln and "outside" in ln), "")
+    ok = lc.check(r.returncode != 0 and not missing, f"refused (exit {r.returncode}): {line.strip()}"
+                  + (f"; missing {missing}" if missing else ""))
+    ok &= lc.check(not field_times(case) and "Time = " not in msg,
+                   "before the first step: no time step taken, no time directory written")
     return ok
 
 
@@ -571,6 +656,7 @@ def sliding_block(a, work):
 
 
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
+             "drift-fields": drift_fields, "drift-field-range": drift_field_range,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
              "closed-box": closed_box, "rest": rest,
              "incline": incline, "sliding-block": sliding_block}
