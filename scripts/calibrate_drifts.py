@@ -19,12 +19,12 @@ spatial bins (each drawn with all its windows). Prints a table; with --target wr
 CASE/constant/bulkProperties (created if absent; only the drifts entries change) and the JSON
 (default CASE/constant/bulkProperties.calibration.json). Bad input exits 2 before writing.
 --fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
-the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell the
-time mean over the selected windows of the per-bin ratio (u_f / u_s, ...) of the bin holding the
-cell centre, weighted by the samples' weight w (--weights, as in the wls estimator); the constant
-estimate where the bin has no selected window or the cell lies outside the grid; clipped into the
-bulk model's range (the count is printed). --field-mean wls: per bin the wls slope of its windows
-instead of the ratios' mean. Fixed in time: the first form of stage C.
+the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell,
+from the bin holding the cell centre, the wls slope of that bin's selected windows (--field-mean
+wls, default) or the time mean of its per-bin ratios (u_f / u_s, ...; --field-mean ratio), weighted
+by the samples' weight w (--weights); the constant estimate where the bin has no selected window or
+the cell lies outside the grid; clipped into the bulk model's range (the count is printed). Fixed
+in time: the first form of stage C.
 """
 
 import argparse
@@ -341,7 +341,7 @@ def cell_centres(target):
     return np.array([pts[sorted(c)].mean(axis=0)[:2] for c in cells])
 
 
-def drift_fields(res, centres, lo, hi, how="ratio"):
+def drift_fields(res, centres, lo, hi, how="wls"):
     """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping."""
     with h5py.File(res["h5"], "r") as h:
         xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
@@ -391,7 +391,7 @@ def check_target(target):
     return tree
 
 
-def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="ratio"):
+def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="wls"):
     """Checks TARGET and the drifts against the bulk model's range, then writes
     TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
     lambdaP); returns their paths. Nothing is written when a check fails (InputError)."""
@@ -457,9 +457,10 @@ def main(argv=None):
     ap.add_argument("--fields", action="store_true",
                     help="with --target: also the drift fields constant/lambdaU, lambdaW, lambdaP "
                     "on the target's mesh, and drifts { fields on; }")
-    ap.add_argument("--field-mean", default="ratio",
-                    help="--fields: per bin the weighted time mean of the ratios (ratio, default) "
-                    "or the wls slope of its windows (wls)")
+    ap.add_argument("--field-mean", default="wls",
+                    help="--fields: per bin the wls slope of its windows (wls, default: the "
+                    "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge) "
+                    "or the weighted time mean of the ratios (ratio)")
     a = ap.parse_args(argv)
     try:
         if a.fields and not a.target:
