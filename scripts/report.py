@@ -394,8 +394,11 @@ def table(sc, law):
                     where if got is None else f"liquid fronts (HB, HB&P) and granular front (P) {where}"
                     + ("; " + locked(sc["HB+P"]) if locked(sc["HB+P"]) else "")))
 
-    # Runout law.
-    tier = tiers_of(*(sc[n] for n in DRY_SERIES))
+    # Runout law: fitted over the scenes of one tier (law["tier"]).
+    fitted = [sc[r["scene"]] for r in law["rows"]] or [sc[n] for n in DRY_SERIES]
+    tier = tiers_of(*fitted)
+    left = (f"; not fitted: {', '.join(law['left_out'])} (another tier)" if law.get("left_out")
+            else "")
     if law.get("alpha") is None:
         rows.append(row("runout exponent α (P-I-I … P-I-V)", PAPER["alpha"], None, tier, None,
                         f"needs at least two of P-I-I … P-I-V finished ({len(law['rows'])} now)"))
@@ -408,7 +411,7 @@ def table(sc, law):
                 if agree else
                 f"cluster front; one-grain-thick front gives α = {law['alpha_thickness']:.3f}. "
                 + ("Runs cut at endTime before arrest, so runouts are not final; " if "endTime" in stopped else "")
-                + fidelity(*(sc[n] for n in DRY_SERIES)))
+                + fidelity(*fitted)) + left
         rows.append(row(f"runout exponent α ({len(law['rows'])} of P-I-I … P-I-V)", PAPER["alpha"],
                         round(a, 3), tier, agree, note))
         rows.append(row("runout coefficient λ", "not given (Lube et al. 2005: 1.2)", round(lam, 3), tier, None,

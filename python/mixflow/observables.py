@@ -249,22 +249,30 @@ def outflow_start(s):
 
 
 def runout_law(scenes):
-    """Fit of (l_inf - L)/L = lambda a^alpha over the finished P-I-* scenes (both front rules)."""
+    """Fit of (l_inf - L)/L = lambda a^alpha over the finished P-I-* scenes (both front rules), of
+    one tier: the one most of them ran at (the finer on a tie), since tiers differ in stiffness and
+    geometry; the others are listed in "left_out"."""
+    done = [scenes[n] for n in DRY_SERIES if scenes[n].done and scenes[n].summary]
+    tiers = [s.tier for s in done]
+    rank = {"quick": 0, "reference": 1, "paper-window": 2, "paper": 3}
+    tier = max(set(tiers), key=lambda t: (tiers.count(t), rank.get(t, -1))) if tiers else None
+    left_out = [s.name for s in done if s.tier != tier]
     rows = []
-    for name in DRY_SERIES:
-        s = scenes[name]
-        if not s.done or not s.summary:
+    for s in done:
+        if s.tier != tier:
             continue
+        name = s.name
         L = s.summary["sample"]["length_m"]
         a = s.summary["settled"]["height_m"] / L
         thick = thickness_front(os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv"), L, D_P)
         rows.append({"scene": name, "a": a, "runout": s.summary["runout_m"] / L, "thick": (thick - L) / L,
                      "stop_reason": s.summary.get("stop_reason"), "end_time_s": s.summary.get("end_time_s")})
     if len(rows) < 2:
-        return {"rows": rows}
+        return {"rows": rows, "tier": tier, "left_out": left_out}
     alpha, lam = fit_power_law([r["a"] for r in rows], [r["runout"] for r in rows])
     alpha_t, lam_t = fit_power_law([r["a"] for r in rows], [r["thick"] for r in rows])
-    return {"rows": rows, "alpha": alpha, "lambda": lam, "alpha_thickness": alpha_t, "lambda_thickness": lam_t}
+    return {"rows": rows, "tier": tier, "left_out": left_out, "alpha": alpha, "lambda": lam,
+            "alpha_thickness": alpha_t, "lambda_thickness": lam_t}
 
 
 # Writing them
