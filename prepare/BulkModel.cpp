@@ -69,10 +69,8 @@ Schema makeSchema() {
 // The declared drift, in the range that keeps alpha_s + lambda alpha_f >= kDriftDenominatorMin.
 double readDrift(const Dictionary& d, const std::string& key, double alphaS) {
   const Param& p = BulkModel::schema().param("drifts." + key);
-  const double lo = alphaS < 1
-                        ? std::max(p.range.lo, (bulk::kDriftDenominatorMin - alphaS) / (1 - alphaS))
-                        : p.range.lo;
-  return d.scalarOr(key, p.number, Range::closed(lo, p.range.hi));
+  return d.scalarOr(key, p.number,
+                    Range::closed(bulk::driftLowerBound(alphaS, p.range.lo), p.range.hi));
 }
 }  // namespace
 

@@ -28,6 +28,12 @@ struct LambdaCoefficients {
 // and clipped here: Lambda_u = 1 / (alpha_s + lambda_u alpha_f) is infinite at zero.
 inline constexpr double kDriftDenominatorMin = 0.01;
 
+// The smallest drift the input check allows: alpha_s + lambda alpha_f >= kDriftDenominatorMin,
+// and not below FLOOR (the declared range's own bound).
+inline double driftLowerBound(double alphaS, double floor) {
+  return alphaS < 1 ? std::max(floor, (kDriftDenominatorMin - alphaS) / (1 - alphaS)) : floor;
+}
+
 inline double driftDenominator(double alphaS, double lambda) {
   return std::max(alphaS + lambda * (1.0 - alphaS), kDriftDenominatorMin);
 }

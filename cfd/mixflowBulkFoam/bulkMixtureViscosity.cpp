@@ -62,9 +62,7 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
                          U_.mesh()));
   f->correctBoundaryConditions();  // coupled patches: the face values of the cells read
   // The constants' range (prepare/BulkModel.cpp): Lambda = 1 / (alpha_s + lambda alpha_f) finite.
-  const scalar lo = alphaS_ < 1
-                        ? max(-1e3, (mixflow::bulk::kDriftDenominatorMin - alphaS_) / (1 - alphaS_))
-                        : -1e3;
+  const scalar lo = mixflow::bulk::driftLowerBound(alphaS_, -1e3);
   const scalar hi = 1e3;
   auto bad = [&](scalar v) { return !(v >= lo && v <= hi); };
   label cells = 0, faces = 0;
