@@ -40,6 +40,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from mixflow import bulkprops  # noqa: E402
+from mixflow.foamcase import format_scalar_list  # noqa: E402
 from mixflow.foamdict import DictError, parse_dict  # noqa: E402
 from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
@@ -283,10 +284,8 @@ def bulk_properties_text(path, drifts, source, solid_fraction=None, fields=False
     return bulkprops.block_text(path, "drifts", entries)
 
 
-FIELD_MEANS = ("ratio", "wls")
 
-
-def bin_means(s, how="ratio"):
+def bin_means(s, how):
     """Per spatial bin (y, x) over the selected windows, NaN where the bin has none: the weighted
     time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), or the wls slope of the bin's
     windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less)."""
@@ -341,7 +340,7 @@ def cell_centres(target):
     return np.array([pts[sorted(c)].mean(axis=0)[:2] for c in cells])
 
 
-def drift_fields(res, centres, lo, hi, how="wls"):
+def drift_fields(res, centres, lo, hi, how):
     """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping."""
     with h5py.File(res["h5"], "r") as h:
         xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
@@ -364,15 +363,22 @@ def drift_fields(res, centres, lo, hi, how="wls"):
     return out
 
 
-def field_text(name, values, source):
-    body = "\n".join(f"{v:.17g}" for v in values)
+FIELD_MEAN_TEXT = {"wls": "the wls slope of the windows", "ratio": "the weighted time mean of the ratios"}
+
+
+def field_text(name, values, source, field_mean):
     return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       "
             f"volScalarField;\n    location    \"constant\";\n    object      {name};\n}}\n"
-            f"// {source}\n// per cell: the weighted time mean of the bin holding its centre (the "
-            "constant estimate where none), clipped to the bulk model's range\n\n"
-            f"dimensions      [0 0 0 0 0 0 0];\n\ninternalField   nonuniform List<scalar>\n"
-            f"{len(values)}\n(\n{body}\n)\n;\n\nboundaryField\n{{\n"
+            f"// {source}\n// per cell: {FIELD_MEAN_TEXT[field_mean]} of the bin holding its centre "
+            "(the constant estimate where none), clipped to the bulk model's range\n\n"
+            f"dimensions      [0 0 0 0 0 0 0];\n\ninternalField   {format_scalar_list(values)}\n;\n\n"
+            "boundaryField\n{\n"
             "    \".*\" { type zeroGradient; }\n    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
+
+
+def public(res):
+    """RES without its private entries (keys starting with _: the samples kept for --fields)."""
+    return {k: v for k, v in res.items() if not k.startswith("_")}
 
 
 def check_target(target):
@@ -422,8 +428,7 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
     json_path = json_path or path + ".calibration.json"
     files = []
     sel = res.get("_samples")
-    res = {k: v for k, v in res.items() if not k.startswith("_")}
-    res = dict(res, bulk_properties=path, source=source, solid_fraction=alpha,
+    res = dict(public(res), bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
     if fields:
         fs = drift_fields(dict(res, _samples=sel), centres, lo, DRIFT_MAX, field_mean)
@@ -432,7 +437,8 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
         for q, f in fs.items():
             name = DRIFTS[q][0]
             fp = os.path.join(target, "constant", name)
-            files.append((fp, field_text(name, f["values"], f"{source}, field mean {field_mean}")))
+            files.append((fp, field_text(name, f["values"], f"{source}, field mean {field_mean}",
+                                         field_mean)))
             res["fields"][name] = dict({k: v for k, v in f.items() if k != "values"}, file=fp)
     files += [(path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")]
     for p, body in files:
@@ -465,8 +471,8 @@ def main(argv=None):
     try:
         if a.fields and not a.target:
             raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
-        if a.field_mean not in FIELD_MEANS:
-            raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(FIELD_MEANS)}")
+        if a.field_mean not in FIELD_MEAN_TEXT:
+            raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(sorted(FIELD_MEAN_TEXT))}")
         if a.target:
             check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
@@ -484,8 +490,7 @@ def main(argv=None):
                               f"into the allowed range; values [{r['min']:.4g}, {r['max']:.4g}]")
         elif a.json:
             with open(a.json, "w") as f:
-                json.dump({k: v for k, v in res.items() if not k.startswith("_")}, f, indent=1,
-                          sort_keys=True)
+                json.dump(public(res), f, indent=1, sort_keys=True)
             print(f"wrote {a.json}")
     except InputError as e:
         print(f"calibrate_drifts.py: error: {e}", file=sys.stderr)
