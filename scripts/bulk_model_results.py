@@ -74,9 +74,11 @@ def load(path):
 
 
 def dem_front(dem, t):
-    """The CFD-DEM granular front at T; its last write when T is past it (a run ends a DEM step
-    short of endTime)."""
-    return outputs.interpolated(dem, outputs.GRANULAR_FRONT, min(t, dem[-1][outputs.TIME]))
+    """The CFD-DEM granular front at T; its last write when T is past it by at most
+    outputs.END_TOLERANCE_S, else nan."""
+    end = dem[-1][outputs.TIME]
+    return outputs.interpolated(dem, outputs.GRANULAR_FRONT,
+                                end if end < t <= end + outputs.END_TOLERANCE_S else t)
 
 
 def mixture(scene, work, reference):

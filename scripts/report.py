@@ -27,6 +27,7 @@ import numpy as np
 sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 import suite  # noqa: E402  (scene list, dictionary reader)
+from mixflow import outputs  # noqa: E402
 from mixflow.froude import HOLD_S  # noqa: E402
 from mixflow.observables import (  # noqa: E402
     clean, col, fmt, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
@@ -580,9 +581,9 @@ def write_report(out, work, sc, F, rows, law, command, bulk_lines=()):
 
 
 def front_at(front, t):
-    """A front (t, x) at time T, None if the run ended before (by more than 1 ms: a run stops up
-    to a DEM step short of its endTime, and then its last value stands for T)."""
-    if front is None or front[0][-1] < t - 1e-3:
+    """A front (t, x) at time T, None if the run ended before it by more than
+    outputs.END_TOLERANCE_S (then its last value stands for T)."""
+    if front is None or front[0][-1] < t - outputs.END_TOLERANCE_S:
         return None
     return float(np.interp(t, *front))
 

@@ -155,6 +155,11 @@ def read_rows(path):
     return rows
 
 
+# A run stops up to a DEM step short of its endTime: its last row then stands for a time at most
+# this far (s) past it, and no farther.
+END_TOLERANCE_S = 1e-3
+
+
 def interpolated(rows, key, t):
     """ROWS' KEY at time T, linear between the rows around T (nan outside the series)."""
     for r0, r1 in zip(rows, rows[1:]):
