@@ -64,22 +64,26 @@ def result(case, ref_front):
 STAGE_B = {"wls": "B", "median": "B_median"}  # the stage's key in OUT per estimator
 
 
-def stage_b(rec, estimator, case_a, ref, ref_front, a):
-    """Stage B with ESTIMATOR's constant drifts: REC[key] (its result, or why it did not run),
-    REC[key + '_calibration'] (the calibration's table) and REC[key + '_drifts'] (its JSON)."""
-    key = STAGE_B[estimator]
-    case_b = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
+def drift_stage(rec, key, options, case_a, ref, ref_front, a):
+    """Stage KEY: stage A's case with the drifts calibrate_drifts.py writes with OPTIONS, run.
+    REC[KEY] (its result, or why it did not run), REC[KEY + '_calibration'] (the calibration's
+    printout) and REC[KEY + '_drifts'] (its JSON)."""
+    case = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
     cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
-               "--target", case_b, "--flowing-factor", a.flowing_factor,
-               "--estimator", estimator], fatal=False)
+               "--target", case, "--flowing-factor", a.flowing_factor] + options, fatal=False)
     if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
         rec[key] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
         return
     rec[key + "_calibration"] = cal.strip().splitlines()[-12:]
-    with open(os.path.join(case_b, "constant", "bulkProperties.calibration.json")) as f:
+    with open(os.path.join(case, "constant", "bulkProperties.calibration.json")) as f:
         rec[key + "_drifts"] = json.load(f)
-    run(["./Allrun", "1"], cwd=case_b)
-    rec[key] = result(case_b, ref_front)
+    run(["./Allrun", "1"], cwd=case)
+    rec[key] = result(case, ref_front)
+
+
+def stage_line(rec, key):
+    r = rec[key]
+    return f"{r['front_m']:.3f} m ({100 * r['front_error']:+.0f} %)" if "front_m" in r else "not run"
 
 
 def fresh_copy(src, dst):
@@ -138,30 +142,13 @@ def main():
         rec["A"] = result(case_a, ref_front)
         out["scenes"][scene] = rec
         for est in a.estimators.split(","):
-            stage_b(rec, est, case_a, ref, ref_front, a)
-        bs = [f"{est} " + (f"{rec[k]['front_m']:.3f} m ({100 * rec[k]['front_error']:+.0f} %)"
-                           if "front_m" in rec[k] else "not run")
-              for est, k in STAGE_B.items() if k in rec]
-        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {rec['A0']['front_m']:.3f} m, "
-              f"A {rec['A']['front_m']:.3f} m ({100 * rec['A']['front_error']:+.0f} %); stage B "
-              + ", ".join(bs), flush=True)
-        # Stage C: stage A's case (its mesh copied along) with the drift fields on that mesh.
-        case_c = fresh_copy(case_a, os.path.join(a.work, "C", scene))
-        cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
-                   "--target", case_c, "--flowing-factor", a.flowing_factor, "--fields",
-                   "--field-mean", a.field_mean],
-                  fatal=False)
-        if cal is None:  # the constant fallback outside the range (as stage B)
-            rec["C"] = {"error": "calibrate_drifts.py --fields refused (its message above)"}
-            continue
-        rec["C_calibration"] = cal.strip().splitlines()[-3:]
-        with open(os.path.join(case_c, "constant", "bulkProperties.calibration.json")) as f:
-            rec["C_fields"] = json.load(f)["fields"]
-        run(["./Allrun", "1"], cwd=case_c)
-        rec["C"] = result(case_c, ref_front)
-        print(f"{scene}: stage C {rec['C']['front_m']:.3f} m "
-              f"({100 * rec['C']['front_error']:+.0f} %); bulk CPU {rec['C']['solver_cpu_s']} s",
-              flush=True)
+            drift_stage(rec, STAGE_B[est], ["--estimator", est], case_a, ref, ref_front, a)
+        # Stage C: the drift fields on stage A's mesh (copied along with its inputs).
+        drift_stage(rec, "C", ["--fields", "--field-mean", a.field_mean], case_a, ref, ref_front, a)
+        print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {stage_line(rec, 'A0')}, "
+              f"A {stage_line(rec, 'A')}; stage B "
+              + ", ".join(f"{est} {stage_line(rec, k)}" for est, k in STAGE_B.items() if k in rec)
+              + f"; stage C {stage_line(rec, 'C')}", flush=True)
     outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 
