@@ -294,8 +294,9 @@ std::string Dictionary::word(const std::string& key,
                              const std::vector<std::string>& allowed) const {
   const Entry& e = entry(key);
   if (e.dict || e.tokens.size() != 1)
-    fail(key, "must be one word of: " + joinWords(allowed) +
-                  (e.dict ? "" : "; found '" + text(key) + "' (a missing ';'?)"));
+    fail(key,
+         (allowed.empty() ? "must be one word" : "must be one word of: " + joinWords(allowed)) +
+             (e.dict ? "" : "; found '" + text(key) + "' (a missing ';'?)"));
   const std::string& w = e.tokens[0];
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), w) == allowed.end())
     fail(key, "'" + w + "' is not allowed; choose one of: " + joinWords(allowed));

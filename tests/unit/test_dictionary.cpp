@@ -87,6 +87,14 @@ TEST(Dictionary, AutoOrNumberEntries) {
             std::string::npos);
 }
 
+TEST(Dictionary, WordRefusalsSayWhatIsExpected) {
+  const Dictionary d = Dictionary::parse("free a b; pick a b;", "names.dict");
+  const std::string free = errorOf([&] { d.word("free", {}); });
+  EXPECT_NE(free.find("must be one word; found 'a b'"), std::string::npos) << free;
+  const std::string pick = errorOf([&] { d.word("pick", {"a", "c"}); });
+  EXPECT_NE(pick.find("must be one word of: a, c; found 'a b'"), std::string::npos) << pick;
+}
+
 TEST(Range, OpenAndClosedEnds) {
   EXPECT_FALSE(Range::positive().contains(0.0));
   EXPECT_TRUE(Range::nonNegative().contains(0.0));
