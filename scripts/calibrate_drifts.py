@@ -32,15 +32,14 @@ import hashlib
 import json
 import math
 import os
-import re
 import sys
 
 import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow import bulkprops  # noqa: E402
-from mixflow.foamcase import format_scalar_list  # noqa: E402
+from mixflow import bulkprops, foamcase  # noqa: E402
+from mixflow.foamcase import FoamFileError, format_scalar_list  # noqa: E402
 from mixflow.foamdict import DictError, parse_dict  # noqa: E402
 from mixflow.paper import G  # noqa: E402
 from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
@@ -302,42 +301,13 @@ def bin_means(s, how):
         return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.nan)
 
 
-def _foam_list(path, what):
-    """The list body of an ASCII polyMesh file: (count, text after its opening parenthesis)."""
-    with open(path) as f:
-        text = f.read()
-    if re.search(r"format\s+binary", text):
-        raise InputError(f"{path}: binary; --fields reads ASCII meshes (blockMesh's default)")
-    head = re.search(r"\}\s*(?://[^\n]*\n|\s)*?(\d+)\s*\(", text)
-    if not head:
-        raise InputError(f"{path}: no {what} list")
-    return int(head.group(1)), text[head.end():]
-
-
 def cell_centres(target):
-    """The cell centres (x, y) of TARGET's mesh (constant/polyMesh, ASCII): the mean of each
-    cell's vertices, exact for the parallelepiped cells blockMesh makes."""
-    mesh = os.path.join(target, "constant", "polyMesh")
-    names = ("points", "faces", "owner", "neighbour")
-    missing = [n for n in names if not os.path.isfile(os.path.join(mesh, n))]
-    if missing:
-        raise InputError(f"{mesh}: no {', '.join(missing)} (--fields writes the drifts on the "
-                         "target's mesh: run mixflowPrepare and blockMesh on it first)")
-    n, body = _foam_list(os.path.join(mesh, "points"), "points")
-    pts = np.array([[float(v) for v in p.split()] for p in re.findall(r"\(([^()]*)\)", body)[:n]])
-    n, body = _foam_list(os.path.join(mesh, "faces"), "faces")
-    faces = [[int(v) for v in f.split()] for f in re.findall(r"\d+\(([^()]*)\)", body)[:n]]
-    owner = [int(v) for v in _foam_list(os.path.join(mesh, "owner"), "owner")[1]
-             .split(")")[0].split()]
-    neigh = [int(v) for v in _foam_list(os.path.join(mesh, "neighbour"), "neighbour")[1]
-             .split(")")[0].split()]
-    ncells = max(owner) + 1
-    cells = [set() for _ in range(ncells)]
-    for fi, f in enumerate(faces):
-        cells[owner[fi]].update(f)
-        if fi < len(neigh):
-            cells[neigh[fi]].update(f)
-    return np.array([pts[sorted(c)].mean(axis=0)[:2] for c in cells])
+    """The cell centres (x, y) of TARGET's mesh as an (n, 2) array."""
+    try:
+        return np.array(foamcase.cell_centres(target))
+    except FoamFileError as e:
+        raise InputError(f"{e} (--fields writes the drifts on the target's mesh: run "
+                         "mixflowPrepare and blockMesh on it first)") from None
 
 
 def drift_fields(res, centres, lo, hi, how):

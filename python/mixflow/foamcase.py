@@ -31,6 +31,10 @@ def fail(msg):
     sys.exit(1)
 
 
+class FoamFileError(Exception):
+    """A case file the readers below cannot parse: the message names the file."""
+
+
 def run(cmd, cwd, log_name, env_extra=None):
     """Run cmd in cwd with output to cwd/log_name; fail with the log's tail on non-zero exit."""
     log_path = os.path.join(cwd, log_name)
@@ -156,11 +160,11 @@ def read_internal_field(path, ncells=None):
         tok = m.group(1)
         kind = "vector" if tok.startswith("(") else "scalar"
         if ncells is None:
-            fail(f"{path}: uniform internalField needs the cell count")
+            raise FoamFileError(f"{path}: uniform internalField needs the cell count")
         return [_parse_value(tok, kind)] * ncells
     m = re.search(r"^internalField\s+nonuniform\s+List<(scalar|vector)>\s*(\d+)\s*\(", text, re.M)
     if not m:
-        fail(f"cannot parse internalField of {path}")
+        raise FoamFileError(f"cannot parse internalField of {path}")
     kind, n = m.group(1), int(m.group(2))
     body = text[m.end():]
     if kind == "scalar":
@@ -168,7 +172,7 @@ def read_internal_field(path, ncells=None):
     else:
         values = [tuple(float(c) for c in v.split()) for v in re.findall(r"\(([^()]*)\)", body)[:n]]
     if len(values) != n or (ncells is not None and n != ncells):
-        fail(f"{path}: expected {ncells if ncells is not None else n} values, found {len(values)}")
+        raise FoamFileError(f"{path}: expected {ncells if ncells is not None else n} values, found {len(values)}")
     return values
 
 
@@ -178,10 +182,10 @@ def read_label_list(path):
         text = f.read()
     m = re.search(r"^(\d+)\s*\(", text, re.M)
     if not m:
-        fail(f"cannot parse {path}")
+        raise FoamFileError(f"cannot parse {path}")
     values = [int(v) for v in text[m.end():text.index(")", m.end())].split()]
     if len(values) != int(m.group(1)):
-        fail(f"{path}: expected {m.group(1)} labels, found {len(values)}")
+        raise FoamFileError(f"{path}: expected {m.group(1)} labels, found {len(values)}")
     return values
 
 
@@ -194,12 +198,46 @@ def read_internal_face_field(path):
         m = re.search(r"^internalField\s+uniform\s+(\S+?)\s*;", text, re.M)
         if m:
             return None, float(m.group(1))
-        fail(f"cannot parse internalField of {path}")
+        raise FoamFileError(f"cannot parse internalField of {path}")
     body = text[m.end():]
     values = [float(v) for v in body[:body.index(")")].split()]
     if len(values) != int(m.group(1)):
-        fail(f"{path}: expected {m.group(1)} values, found {len(values)}")
+        raise FoamFileError(f"{path}: expected {m.group(1)} values, found {len(values)}")
     return values, None
+
+
+def _list_body(path):
+    """(count, text after the opening parenthesis) of an ASCII polyMesh list file."""
+    with open(path) as f:
+        text = f.read()
+    if re.search(r"format\s+binary", text):
+        raise FoamFileError(f"{path}: binary; the readers read ASCII meshes (blockMesh's default)")
+    head = re.search(r"\}\s*(?://[^\n]*\n|\s)*?(\d+)\s*\(", text)
+    if not head:
+        raise FoamFileError(f"cannot parse {path}")
+    return int(head.group(1)), text[head.end():]
+
+
+def cell_centres(case):
+    """The cell centres (x, y) of CASE's mesh (constant/polyMesh, ASCII): the mean of each
+    cell's vertices, exact for the parallelepiped cells blockMesh makes."""
+    mesh = os.path.join(case, "constant", "polyMesh")
+    missing = [n for n in ("points", "faces", "owner", "neighbour")
+               if not os.path.isfile(os.path.join(mesh, n))]
+    if missing:
+        raise FoamFileError(f"{mesh}: no {', '.join(missing)}")
+    n, body = _list_body(os.path.join(mesh, "points"))
+    pts = [[float(v) for v in p.split()] for p in re.findall(r"\(([^()]*)\)", body)[:n]]
+    n, body = _list_body(os.path.join(mesh, "faces"))
+    faces = [[int(v) for v in f.split()] for f in re.findall(r"\d+\(([^()]*)\)", body)[:n]]
+    owner = read_label_list(os.path.join(mesh, "owner"))
+    neigh = read_label_list(os.path.join(mesh, "neighbour"))
+    cells = [set() for _ in range(max(owner) + 1)]
+    for fi, f in enumerate(faces):
+        cells[owner[fi]].update(f)
+        if fi < len(neigh):
+            cells[neigh[fi]].update(f)
+    return [tuple(sum(pts[v][k] for v in c) / len(c) for k in (0, 1)) for c in cells]
 
 
 def format_scalar_list(values):
