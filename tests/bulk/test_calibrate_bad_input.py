@@ -58,6 +58,9 @@ def main():
         ("bootstrap 5", [case, "--target", target, "--bootstrap", "5"],
          ["--bootstrap 5", ">= 10"]),
         ("target without constant/", [case, "--target", bare], [bare, "no constant/ directory"]),
+        ("fields without a mesh", [case, "--target", target, "--fields"],
+         [os.path.join(target, "constant", "polyMesh"), "no points, faces, owner, neighbour",
+          "run mixflowPrepare and blockMesh"]),
     ]
     for what, args, needles in cases:
         r = subprocess.run(CMD + args, capture_output=True, text=True)
