@@ -592,9 +592,9 @@ def sliding_block(a, work):
     end = 1.5 * t_stop
     top = (n - 1) * nx
     p_top = rho * G * dy / 2 - rho_air * G * h
-    functions = f"""functions {{ mean {{ type volFieldValue; libs ("libfieldFunctionObjects.so");
+    functions = """functions { mean { type volFieldValue; libs ("libfieldFunctionObjects.so");
   regionType all; operation volAverage; fields (U); writeFields false; log false;
-  writeControl timeStep; writeInterval 1; }} }}
+  writeControl timeStep; writeInterval 1; } }
 """
     # Viscous number nu dt / dy^2 = 2 (as the incline); the layer's shear across the depth,
     # g tan(delta) h^2 / (2 nu) = 1 % of u0, is what keeps it a block. The free-slip top is the

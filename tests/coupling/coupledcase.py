@@ -6,7 +6,6 @@ Standard library only; OpenFOAM file helpers come from python/mixflow/foamcase.p
 """
 
 import csv
-import math
 import os
 import shutil
 import sys

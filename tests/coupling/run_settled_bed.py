@@ -67,7 +67,7 @@ fix wzhi all wall/gran model hertz tangential history primitive type 1 zplane {L
 fix integr all nve/sphere
 """ + "".join(f"create_atoms 1 single {x!r} {y!r} {z!r} units box\n" for x, y, z in atoms) + \
         f"set group all diameter {d!r} density {rho_p!r}\n" + \
-        f"compute floorForce all reduce sum f_force_wylo[2]\n" + \
+        "compute floorForce all reduce sum f_force_wylo[2]\n" + \
         f"fix floorOut all ave/time 1 {every} {every} c_floorForce file dem/floor.txt\n"
     coupling = f"""demScript "system/in.liggghts";
 exchangeEvery {every};

@@ -38,7 +38,6 @@ run with --also-resolved and its numbers printed (not judged: docs/parameters.md
 """
 
 import argparse
-import csv
 import math
 import os
 import sys

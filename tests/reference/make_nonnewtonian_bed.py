@@ -16,7 +16,6 @@ reaches tau_y, i.e. at the threshold -dp/dx_c = 12.5 (1 - eps) tau_y / (eps d).
 """
 
 import argparse
-import math
 import os
 
 # The bed of run_ergun.py (CFDEMcoupling's ErgunTestMPI: d 1 mm, eps 0.451335).
