@@ -26,7 +26,6 @@ import csv
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -42,16 +41,7 @@ def last(path, column):
 
 
 def run(cmd, cwd=None, fatal=True):
-    """Runs CMD; its output, or (not fatal) None after printing why it failed."""
-    print("+ " + " ".join(cmd), flush=True)
-    r = subprocess.run(cmd, cwd=cwd, env=foamcase.run_env(), capture_output=True, text=True)
-    if r.returncode != 0:
-        msg = f"bulk_stages: {' '.join(cmd)} failed:\n{r.stdout[-2000:]}{r.stderr[-2000:]}"
-        if fatal:
-            sys.exit(msg)
-        print(msg, flush=True)
-        return None
-    return r.stdout
+    return foamcase.run_tool(cmd, "bulk_stages", cwd, fatal)
 
 
 def result(case, ref_front):

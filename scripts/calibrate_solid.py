@@ -21,7 +21,6 @@ import argparse
 import csv
 import math
 import os
-import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -69,10 +68,7 @@ def reference_front(case, times):
 
 
 def run(cmd, cwd=None):
-    r = subprocess.run(cmd, cwd=cwd, env=foamcase.run_env(), capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"calibrate_solid: {' '.join(cmd)} failed (exit {r.returncode}):\n"
-                 f"{r.stdout[-2000:]}{r.stderr[-2000:]}")
+    foamcase.run_tool(cmd, "calibrate_solid", cwd)
 
 
 def solid_entries(tan_phi, viscosity):

@@ -53,6 +53,21 @@ def run(cmd, cwd, log_name, env_extra=None):
     return text
 
 
+def run_tool(cmd, who, cwd=None, fatal=True):
+    """Runs CMD in run_env(), its output captured; returns its stdout, or on failure exits
+    naming WHO and CMD with the output's tail (fatal) or prints that and returns None."""
+    print("+ " + " ".join(cmd), flush=True)
+    r = subprocess.run(cmd, cwd=cwd, env=run_env(), capture_output=True, text=True)
+    if r.returncode != 0:
+        msg = (f"{who}: {' '.join(cmd)} failed (exit {r.returncode}):\n"
+               f"{r.stdout[-2000:]}{r.stderr[-2000:]}")
+        if fatal:
+            sys.exit(msg)
+        print(msg, flush=True)
+        return None
+    return r.stdout
+
+
 def require_foam_env():
     if "WM_PROJECT_DIR" not in os.environ:
         fail("WM_PROJECT_DIR is not set (OpenFOAM needs it; CTest sets it from MIXFLOW_FOAM_ENV)")
