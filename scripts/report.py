@@ -408,9 +408,13 @@ def table(sc, law):
         a, lam = law["alpha"], law["lambda"]
         agree = abs(a - PAPER["alpha"]) <= 0.1
         stopped = {r["stop_reason"] for r in law["rows"]}
-        note = (f"agrees within 0.1 (cluster front; one-grain-thick front: α = {law['alpha_thickness']:.3f})"
+        se = law.get("alpha_standard_error")
+        spread = (f"fit standard error ± {se:.2f}, so the paper's value is "
+                  f"{abs(a - PAPER['alpha']) / se:.1f} standard errors away; " if se else "")
+        note = (f"agrees within 0.1 (cluster front, {spread}one-grain-thick front: α = "
+                f"{law['alpha_thickness']:.3f})"
                 if agree else
-                f"cluster front; one-grain-thick front gives α = {law['alpha_thickness']:.3f}. "
+                f"cluster front, {spread}one-grain-thick front gives α = {law['alpha_thickness']:.3f}. "
                 + ("Runs cut at endTime before arrest, so runouts are not final; " if "endTime" in stopped else "")
                 + fidelity(*fitted)) + left
         rows.append(row(f"runout exponent α ({len(law['rows'])} of P-I-I … P-I-V)", PAPER["alpha"],

@@ -18,7 +18,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from mixflow.paper import D_P  # noqa: E402
-from mixflow.runout import fit_power_law, thickness_front  # noqa: E402
+from mixflow.runout import fit_power_law, power_law_slope_error, thickness_front  # noqa: E402
 
 
 def main():
@@ -53,7 +53,9 @@ def main():
     a_list = [r["a"] for r in rows]
     alpha, lam = fit_power_law(a_list, [r["normalised_runout"] for r in rows])
     alpha_t, lam_t = fit_power_law(a_list, [r["normalised_runout_thickness"] for r in rows])
-    summary = {"alpha": alpha, "lambda": lam, "front_rule": "cluster (largest connected cluster, gap 0.5 d)",
+    summary = {"alpha": alpha, "lambda": lam,
+               "alpha_standard_error": power_law_slope_error(
+                   a_list, [r["normalised_runout"] for r in rows]), "front_rule": "cluster (largest connected cluster, gap 0.5 d)",
                "alpha_thickness_front": alpha_t, "lambda_thickness_front": lam_t,
                "paper_alpha": 0.9884, "experiment_alpha_wide": [0.8, 1.0], "lube2005_lambda": 1.2,
                "young_modulus_pa": rows[0]["young_modulus_pa"], "time_step_s": rows[0]["time_step_s"],

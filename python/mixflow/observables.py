@@ -14,7 +14,7 @@ from .foamdict import read_dict
 from .froude import first_time, subcritical_after_arrival
 from .outputs import interpolated as at, read_rows
 from .paper import D_P, DRY_SERIES, G, PAPER_NAME
-from .runout import fit_power_law, thickness_front
+from .runout import fit_power_law, power_law_slope_error, thickness_front
 
 
 def col(rows, key):
@@ -269,10 +269,13 @@ def runout_law(scenes):
                      "stop_reason": s.summary.get("stop_reason"), "end_time_s": s.summary.get("end_time_s")})
     if len(rows) < 2:
         return {"rows": rows, "tier": tier, "left_out": left_out}
-    alpha, lam = fit_power_law([r["a"] for r in rows], [r["runout"] for r in rows])
-    alpha_t, lam_t = fit_power_law([r["a"] for r in rows], [r["thick"] for r in rows])
+    a = [r["a"] for r in rows]
+    alpha, lam = fit_power_law(a, [r["runout"] for r in rows])
+    alpha_t, lam_t = fit_power_law(a, [r["thick"] for r in rows])
     return {"rows": rows, "tier": tier, "left_out": left_out, "alpha": alpha, "lambda": lam,
-            "alpha_thickness": alpha_t, "lambda_thickness": lam_t}
+            "alpha_standard_error": power_law_slope_error(a, [r["runout"] for r in rows]),
+            "alpha_thickness": alpha_t, "lambda_thickness": lam_t,
+            "alpha_thickness_standard_error": power_law_slope_error(a, [r["thick"] for r in rows])}
 
 
 # Writing them

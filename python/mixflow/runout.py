@@ -17,6 +17,20 @@ def fit_power_law(a, r):
     return alpha, math.exp(my - alpha * mx)
 
 
+def power_law_slope_error(a, r):
+    """Standard error of fit_power_law's alpha (residual variance over n - 2 degrees of
+    freedom); None for fewer than three points."""
+    xs = [math.log(v) for v in a]
+    ys = [math.log(v) for v in r]
+    n = len(xs)
+    if n < 3:
+        return None
+    alpha, lam = fit_power_law(a, r)
+    mx = sum(xs) / n
+    res = sum((y - math.log(lam) - alpha * x) ** 2 for x, y in zip(xs, ys))
+    return math.sqrt(res / (n - 2) / sum((x - mx) ** 2 for x in xs))
+
+
 def thickness_front(profile_csv, L, d):
     """First bin beyond L whose width-averaged column top is below one grain: its left edge."""
     rows = list(csv.DictReader(open(profile_csv)))
