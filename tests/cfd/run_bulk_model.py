@@ -66,6 +66,21 @@ sliding-block a stiff mixture layer (the newtonian mixture with nu = 0.05 m2/s) 
               tan(delta) h^2/(2 nu) = 1 % of u0, decays in ~h^2/nu. --case-basal runs the case
               with other basal entries against the same analytic solution (law noSlip; or
               tanDelta 0.28: both fail).
+mui-incline   the mu(I) solid (solid { rheology muI; }, glass-bead defaults, d 1 mm) as a dry
+              layer (pore gas of 1.2 kg/m3 without viscosity, lambda_p = 0: the gas carries no
+              load) h = 0.01 m deep down a periodic 25 degree incline from rest (incline's
+              machinery, p_m = 0 at the stress-free top), 8, 16, 32 cells, to 5 s. Exact: the
+              Bagnold profile u(z) = (2/3)(I_theta/d) sqrt(phi g cos(theta)) [h^1.5 - (h - z)^1.5],
+              I_theta = I_0 (tan(theta)/chi - mu_s)/(mu_2 - tan(theta)/chi), phi = (1 -
+              rho_air/rho*)/alpha_s, chi = alpha_s phi (docs/bulk_model.md); u_surface 0.3413 m/s.
+              Pass: steady (last two writes within 1e-3 u_surface); the top cell within 1 % of the
+              exact value at its centre on 32 cells (measured -0.43 %); observed orders >= 1.8
+              (L2) and >= 1.3 (max; the surface's (h - z)^1.5 makes it 1.5) on both refinements
+              (measured 1.99, 2.00 and 1.49, 1.50).
+mui-rest      the same layer (16 cells) at tan(theta) = 0.8 chi mu_s (16.99 degrees, below the
+              static angle 20.90) for 1 s: the regularised law creeps at a uniform shear rate
+              <= ln(mu_s/(mu_s - tan(theta)/chi))/m_y; pass: max |U| at every write <= h times it
+              (1.61e-4 m/s; measured 0.959 of it, the top cell's centre lying dz/2 below h).
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
@@ -706,6 +721,10 @@ def mui_layer(a, work, name, n, theta, end, max_dt, writes):
 def mui_incline(a, work):
     """The Bagnold profile of the mu(I) law down a 25 degree incline on 8, 16, 32 cells."""
     h, d, theta = MUI_H, 0.001, math.radians(25)
+    # From rest the layer's transient decays by ~0.4 every 0.5 s (e-folding 0.5 s): after 5 s
+    # (10 writes) it is below 1e-3 of the surface velocity. Steps of viscous number 4 at the bed's
+    # flowing viscosity (the Courant number 0.5 limits 8 cells).
+    end, vn, writes = 5.0, 4.0, 10
     ok, errs = True, {}
     for n in (8, 16, 32):
         phi, mu = MUI_PHI, math.tan(theta) / MUI_CHI
@@ -714,14 +733,14 @@ def mui_incline(a, work):
         u_surf = amp * h ** 1.5
         # Steps of viscous number a.mui_vn at the bed's flowing viscosity g sin(theta) h / u'(0).
         nu_bed = G * math.sin(theta) * h / (1.5 * amp * math.sqrt(h))
-        case = mui_layer(a, work, f"bulk_mui_incline_{n}", n, theta, a.mui_end,
-                         a.mui_vn * (h / n) ** 2 / nu_bed, 10)
+        case = mui_layer(a, work, f"bulk_mui_incline_{n}", n, theta, end, vn * (h / n) ** 2 / nu_bed,
+                         writes)
         run_bulk(a, case)
         times = field_times(case)
         last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
         change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / u_surf
-        ok &= lc.check(change <= 1e-4, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
-                       f"{change:.1e} u_surface (<= 1e-4)")
+        ok &= lc.check(change <= 1e-3, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
+                       f"{change:.1e} u_surface (<= 1e-3)")
         dz, err2, errmax = h / n, 0.0, 0.0
         for c, u in enumerate(last):
             z = (c // 4 + 0.5) * dz
@@ -737,14 +756,16 @@ def mui_incline(a, work):
         print(f"  n = {n}: I_theta {i_theta:.5f}, u_surface {u_surf:.5f} m/s; top cell "
               f"{u_top:.5f} m/s ({100 * surf_err:+.3f} % of u_surface against the exact value "
               f"there); L2 error {errs[n][0]:.3e}, max {errs[n][1]:.3e} u_surface", flush=True)
-    ok &= lc.check(abs(errs[32][2]) <= a.mui_surface_tol,
+    ok &= lc.check(abs(errs[32][2]) <= 0.01,
                    f"top-cell velocity on 32 cells within {100 * abs(errs[32][2]):.3f} % of the "
-                   f"exact profile's (<= {100 * a.mui_surface_tol:g} %)")
+                   f"exact profile's (<= 1 %)")
+    # u'' ~ (h - z)^(-1/2) at the free surface: the top cell's error falls as dz^1.5 (the max),
+    # the smooth rest as dz^2 (which the L2 norm sees).
     for c, f in ((8, 16), (16, 32)):
-        for k, name in enumerate(("L2", "max")):
+        for k, name, least in ((0, "L2", 1.8), (1, "max", 1.3)):
             order = math.log(errs[c][k] / errs[f][k], 2)
-            ok &= lc.check(order >= a.mui_order, f"{name} order {c} -> {f} cells: {order:.3f} "
-                           f"(>= {a.mui_order:g})")
+            ok &= lc.check(order >= least, f"{name} order {c} -> {f} cells: {order:.3f} "
+                           f"(>= {least:g})")
     return ok
 
 
@@ -791,13 +812,6 @@ def main():
     p.add_argument("--case-basal", help="sliding-block: the case's basal entries instead of the "
                    "Coulomb law the analytic solution is for (to see the check fail, e.g. "
                    "'law noSlip;' or 'law coulomb; tanDelta 0.25;')")
-    p.add_argument("--mui-end", type=float, default=5.0, help="mui-incline: end time (s)")
-    p.add_argument("--mui-vn", type=float, default=4.0,
-                   help="mui-incline: viscous number of the largest step")
-    p.add_argument("--mui-surface-tol", type=float, default=0.01,
-                   help="mui-incline: top-cell velocity tolerance on 32 cells (relative)")
-    p.add_argument("--mui-order", type=float, default=1.0,
-                   help="mui-incline: least observed order of the L2 and max errors")
     a = p.parse_args()
     work = os.path.join(os.path.abspath(a.workdir), a.scenario)
     shutil.rmtree(work, ignore_errors=True)
