@@ -97,7 +97,7 @@ def set_solid(case, tan_phi, viscosity):
 def set_mui(case):
     """CASE's solid block the mu(I) law at its defaults: the Coulomb law's entries, which muI
     refuses, removed; every other entry kept (comments are not)."""
-    tree = bulkprops.read(case)
+    tree = {k: v for k, v in bulkprops.read(case).items() if k != "FoamFile"}
     solid = {k: v for k, v in tree.get("solid", {}).items()
              if k not in ("tanPhi", "viscosity", "cohesion")}
     tree["solid"] = dict(solid, rheology="muI")
