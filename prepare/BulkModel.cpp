@@ -40,20 +40,49 @@ Schema makeSchema() {
           textParam("drifts.source", b.driftSource,
                     "what set the drifts (scripts/calibrate_drifts.py records the case and its "
                     "file's sha256)"),
-          dictParam("solid", "the grains' Coulomb-viscoplastic rheology"),
+          dictParam("solid", "the grains' rheology; its `rheology` selects its entries"),
+          wordParam(
+              "solid.rheology", b.solidRheology, {"coulombViscoplastic", "muI"},
+              "coulombViscoplastic: ν_se = ν_s + τ_ys (1 − e^{−m_y D})/D; muI (Jop et al. "
+              "2006): ν_se = μ(I) κ_y p_s (1 − e^{−m_y D})/D, μ(I) = μ_s + (μ_2 − μ_s)/(I_0/I "
+              "+ 1), I = D d/√(κ_y p_s); D = √(2 D:D), the shear rate of a simple shear"),
           scalarParam("solid.viscosity", b.solidViscosity, Range::nonNegative(), "m²/s",
-                      "ν_s; calibrated with tanφ on the dry scene P against its DEM run "
+                      "ν_s of coulombViscoplastic; calibrated with tanφ on the dry scene P against "
+                      "its DEM run "
                       "(scripts/calibrate_solid.py: RMS front error 2.6 %)")
+              .only({"coulombViscoplastic"})
               .alsoAllowed("> 0 without a yield stress"),
           scalarParam("solid.tanPhi", b.tanPhi, Range::closed(0.0, 5.0), "",
-                      "pressure coefficient of the yield stress; calibrated on P with ν_s (it "
-                      "also carries the DEM's side-wall friction)"),
-          scalarParam("solid.cohesion", b.cohesion, Range::nonNegative(), "Pa", "τ_c"),
+                      "tanφ of coulombViscoplastic, the yield stress's pressure coefficient; "
+                      "calibrated on P with ν_s (it "
+                      "also carries the DEM's side-wall friction)")
+              .only({"coulombViscoplastic"}),
+          scalarParam("solid.cohesion", b.cohesion, Range::nonNegative(), "Pa",
+                      "τ_c of coulombViscoplastic")
+              .only({"coulombViscoplastic"}),
+          scalarParam("solid.muS", b.muS, Range::closed(0.0, 5.0), "",
+                      "μ_s of muI; default tan 20.9°, glass beads (GDR MiDi 2004, Jop et al. "
+                      "2006); a dry layer (λ_p = 0) rests below tan θ = μ_s (docs/bulk_model.md)")
+              .only({"muI"}),
+          scalarParam("solid.mu2", b.mu2, Range::closed(0.0, 5.0), "",
+                      "μ_2 of muI, the friction as I → ∞; default tan 32.76°, glass beads")
+              .only({"muI"})
+              .alsoAllowed("≥ μ_s"),
+          scalarParam("solid.I0", b.inertialNumber0, Range::openClosed(0.0, 100.0), "",
+                      "I_0 of muI, the inertial number of μ = (μ_s + μ_2)/2; default glass beads")
+              .only({"muI"}),
+          scalarParam("solid.grainDiameter", b.grainDiameter, Range::openClosed(0.0, 1.0), "m",
+                      "d of muI's inertial number")
+              .only({"muI"})
+              .shownDefault("sceneProperties `particles.diameter`"),
           scalarParam("solid.regularisation", b.regularisation, Range::closed(0.0, 1e5), "s",
                       "m_y of ν_se = ν_s + τ_ys (1 − e^{−m_y D})/D (D the strain rate's "
-                      "magnitude); at rest ν_s + m_y τ_ys"),
+                      "magnitude); at rest ν_s + m_y τ_ys; muI: the same factor, at rest "
+                      "μ_s κ_y p_s m_y, a creep rate ≤ ln(μ_s/(μ_s − τ/(κ_y p_s)))/m_y below μ_s")
+              .alsoAllowed("> 0 for muI"),
           wordParam("solid.yieldPressure", b.yieldPressure, {"paper", "buoyancyReduced"},
-                    "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s"),
+                    "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s (muI: "
+                    "the pressure κ_y p_s of μ(I) and of I)"),
           dictParam("basal", "the mixture's sliding law at the bed (the bottom wall)"),
           wordParam("basal.law", b.basalLaw, {"noSlip", "coulomb"},
                     "noSlip, or coulomb: the bed's shear stress limited to tan δ_m ρ* p_m "
@@ -86,13 +115,20 @@ double BulkModel::yieldPressureFactor(double fluidDensity) const {
 double BulkModel::maxViscosity(double height, double fluidDensity, double nuFluidMax) const {
   const bulk::Drifts d{lambdaU, lambdaW, lambdaP};
   const double pS = kGravity * height / bulk::lambdaCoefficients(solidFraction, d).p;
-  const bulk::SolidRheology s{solidViscosity, tanPhi, cohesion / solidDensity, regularisation};
-  const double nuS = bulk::solidViscosity(s, 0.0, yieldPressureFactor(fluidDensity) * pS);
+  const double py = yieldPressureFactor(fluidDensity) * pS;
+  const double nuS =
+      solidRheology == "muI"
+          ? bulk::solidViscosity(
+                bulk::MuIRheology{muS, mu2, inertialNumber0, grainDiameter, regularisation}, 0.0,
+                py)
+          : bulk::solidViscosity(bulk::SolidRheology{solidViscosity, tanPhi,
+                                                     cohesion / solidDensity, regularisation},
+                                 0.0, py);
   return mixtureDensity * bulk::mixtureDiffusivity(solidFraction, d, nuS, nuFluidMax);
 }
 
 BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, double solidDensity,
-                        double fluidDensity) {
+                        double fluidDensity, double grainDiameter) {
   namespace fs = std::filesystem;
   const fs::path file = fs::path(caseDir) / "constant/bulkProperties";
   const Dictionary d =
@@ -124,15 +160,37 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
 
   const Dictionary s = d.subDictOrEmpty("solid");
   sc.allowOnly(s, "solid");
-  b.solidViscosity = sc.scalar(s, "solid.viscosity");
-  b.tanPhi = sc.scalar(s, "solid.tanPhi");
-  b.cohesion = sc.scalar(s, "solid.cohesion");
+  b.solidRheology = sc.word(s, "solid.rheology");
+  // An entry of the other law is named as such, not silently ignored.
+  const std::vector<std::string> allowed = sc.keys("solid", b.solidRheology);
+  for (const auto& k : s.keys())
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
+      s.fail(k, "is not a parameter of rheology " + b.solidRheology + " (solid.rheology)");
   b.regularisation = sc.scalar(s, "solid.regularisation");
   b.yieldPressure = sc.word(s, "solid.yieldPressure");
-  if (b.solidViscosity == 0 && (b.tanPhi == 0 && b.cohesion == 0))
-    s.fail("viscosity",
-           "value 0 with no yield stress (tanPhi 0, cohesion 0) leaves the grains "
-           "without any stress; allowed range (0, inf) then");
+  if (b.solidRheology == "muI") {
+    b.muS = sc.scalar(s, "solid.muS");
+    b.mu2 = sc.scalar(s, "solid.mu2");
+    b.inertialNumber0 = sc.scalar(s, "solid.I0");
+    b.grainDiameter = s.has("grainDiameter") ? sc.scalar(s, "solid.grainDiameter") : grainDiameter;
+    if (b.mu2 < b.muS)
+      s.fail("mu2", "value " + docNumber(b.mu2) + " is below muS " + docNumber(b.muS) +
+                        "; allowed range [muS, 5]");
+    if (b.regularisation == 0)
+      s.fail("regularisation", "value 0 leaves muI without any stress; allowed range (0, 1e5]");
+    if (!(b.grainDiameter > 0))
+      s.fail("grainDiameter",
+             "missing: sceneProperties particles.diameter is not positive; "
+             "allowed range (0, 1] m");
+  } else {
+    b.solidViscosity = sc.scalar(s, "solid.viscosity");
+    b.tanPhi = sc.scalar(s, "solid.tanPhi");
+    b.cohesion = sc.scalar(s, "solid.cohesion");
+    if (b.solidViscosity == 0 && (b.tanPhi == 0 && b.cohesion == 0))
+      s.fail("viscosity",
+             "value 0 with no yield stress (tanPhi 0, cohesion 0) leaves the grains "
+             "without any stress; allowed range (0, inf) then");
+  }
 
   const Dictionary basal = d.subDictOrEmpty("basal");
   sc.allowOnly(basal, "basal");

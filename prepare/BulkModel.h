@@ -22,13 +22,20 @@ struct BulkModel {
   // constant/lambdaU, ... (stage C of docs/calibration.md); the constants above then only set
   // prepare's time-step bound.
   bool driftFields = false;
-  // Solid: Coulomb-viscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik et al.
-  // nu_s and tanPhi: calibrated on the dry scene P against its DEM run (docs/calibration.md).
-  double solidViscosity = 0.02;                   // nu_s (m2/s, kinematic as in the paper)
-  double tanPhi = 0.45;                           // pressure coefficient of the yield stress
-  double cohesion = 0;                            // Pa
-  double regularisation = 100;                    // m_y (s)
-  std::string yieldPressure = "buoyancyReduced";  // paper | buoyancyReduced
+  // Solid rheology: coulombViscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik
+  // et al. (nu_s and tanPhi calibrated on the dry scene P against its DEM run,
+  // docs/calibration.md); or muI (Jop et al. 2006) with the same pressure and regularisation.
+  std::string solidRheology = "coulombViscoplastic";  // coulombViscoplastic | muI
+  double solidViscosity = 0.02;                       // nu_s (m2/s, kinematic as in the paper)
+  double tanPhi = 0.45;                               // pressure coefficient of the yield stress
+  double cohesion = 0;                                // Pa
+  double regularisation = 100;                        // m_y (s)
+  std::string yieldPressure = "buoyancyReduced";      // paper | buoyancyReduced
+  // mu(I): GDR MiDi (2004) / Jop et al. (2006) glass beads; d: sceneProperties particles.diameter.
+  double muS = 0.3818628674187188;  // tan 20.9 deg
+  double mu2 = 0.6434683848584607;  // tan 32.76 deg
+  double inertialNumber0 = 0.279;   // I_0
+  double grainDiameter = 0;         // d (m)
   // Basal sliding law of the mixture at the bed (the bottom patch): noSlip, or coulomb with the
   // wall shear stress limited to tanDelta times the mixture's pressure (bulkCoulombSlip).
   std::string basalLaw = "noSlip";  // noSlip | coulomb
@@ -46,9 +53,10 @@ struct BulkModel {
 };
 
 // Reads caseDir/constant/bulkProperties (absent: all defaults) for a mixture of liquid density
-// fluidDensity whose grains (sceneProperties particles) have solidDensity; sampleSolidFraction is
-// sceneProperties sample.solidFraction. Throws InputError naming file, entry and allowed range.
+// fluidDensity whose grains (sceneProperties particles) have solidDensity and grainDiameter;
+// sampleSolidFraction is sceneProperties sample.solidFraction. Throws InputError naming file,
+// entry and allowed range.
 BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, double solidDensity,
-                        double fluidDensity);
+                        double fluidDensity, double grainDiameter);
 
 }  // namespace mixflow::cfd

@@ -227,6 +227,16 @@ std::string fvSolution(const LiquidCase& c) {
   return s.str();
 }
 
+// The solid rheology's coefficients as the header comment and the log show them.
+std::string solidSummary(const BulkModel& b) {
+  if (b.solidRheology == "muI")
+    return "mu(I): mu_s " + num(b.muS) + ", mu_2 " + num(b.mu2) + ", I_0 " +
+           num(b.inertialNumber0) + ", d " + num(b.grainDiameter) + " m, m_y " +
+           num(b.regularisation) + " s";
+  return "nu_s " + num(b.solidViscosity) + " m2/s, tanPhi " + num(b.tanPhi) + ", cohesion " +
+         num(b.cohesion) + " Pa, m_y " + num(b.regularisation) + " s";
+}
+
 // The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
 // (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
 std::string bulkMixtureCoeffs(const LiquidCase& c) {
@@ -238,11 +248,19 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
     << "        solidFraction       " << num(b.solidFraction) << ";\n"
     << "        lambdaU             " << num(b.lambdaU) << ";\n"
     << "        lambdaW             " << num(b.lambdaW) << ";\n"
-    << "        lambdaP             " << num(b.lambdaP) << ";\n"
-    << "        solidViscosity      " << num(b.solidViscosity) << ";\n"
-    << "        tanPhi              " << num(b.tanPhi) << ";\n"
-    << "        cohesion            " << num(b.cohesion / b.solidDensity) << ";   // m2/s2\n"
-    << "        regularisation      " << num(b.regularisation) << ";\n"
+    << "        lambdaP             " << num(b.lambdaP) << ";\n";
+  // The Coulomb law's coefficients without a rheology entry, so that its files stay as they were.
+  if (b.solidRheology == "muI")
+    s << "        solidRheology       muI;\n"
+      << "        muS                 " << num(b.muS) << ";\n"
+      << "        mu2                 " << num(b.mu2) << ";\n"
+      << "        I0                  " << num(b.inertialNumber0) << ";\n"
+      << "        grainDiameter       " << num(b.grainDiameter) << ";\n";
+  else
+    s << "        solidViscosity      " << num(b.solidViscosity) << ";\n"
+      << "        tanPhi              " << num(b.tanPhi) << ";\n"
+      << "        cohesion            " << num(b.cohesion / b.solidDensity) << ";   // m2/s2\n";
+  s << "        regularisation      " << num(b.regularisation) << ";\n"
     << "        yieldPressureFactor " << num(b.yieldPressureFactor(r.density)) << ";\n"
     << "        fluidTau0           " << num(yield ? r.tau0() : 0.0) << ";\n"
     << "        fluidK              " << num(yield ? r.k() : r.nu()) << ";\n"
@@ -280,9 +298,7 @@ std::string transportProperties(const LiquidCase& c) {
     const BulkModel& b = c.bulk;
     s << "// Bulk model (constant/bulkProperties): alpha_s " << num(b.solidFraction) << ", rho_s "
       << num(b.solidDensity) << " kg/m3, drifts from " << b.driftSource << ";\n"
-      << "// solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
-      << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation)
-      << " s, yield pressure " << b.yieldPressure << ".\n";
+      << "// solid " << solidSummary(b) << ", yield pressure " << b.yieldPressure << ".\n";
   }
   s << "phases (" << kLiquidPhase << " " << kAirPhase << ");"
     << (c.bulkModel() ? std::string("   // ") + kLiquidPhase + " is the mixture" : "") << "\n\n"
@@ -401,10 +417,8 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
        << (b.driftFields
                ? " (the solver takes the fields constant/lambdaU, lambdaW, lambdaP instead)"
                : "")
-       << "; solid nu_s " << num(b.solidViscosity) << " m2/s, tanPhi " << num(b.tanPhi)
-       << ", cohesion " << num(b.cohesion) << " Pa, m_y " << num(b.regularisation) << " s ("
-       << b.yieldPressure << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3)
-       << " Pa s; bed "
+       << "; solid " << solidSummary(b) << " (" << b.yieldPressure << "); viscosity at rest up to "
+       << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
        << (b.basalLaw == "coulomb" ? "Coulomb sliding, tanDelta " + num(b.tanDelta) : b.basalLaw)
        << "\n";
   }

@@ -90,8 +90,8 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
                "bulk models a mixture of grains and liquid; this scene's content "
                "is " +
                    c.content + " (allowed: cfdDem for it)");
-    c.bulk =
-        readBulkModel(caseDir, c.sample.solidFraction, scene.particles.density, c.liquid.density);
+    c.bulk = readBulkModel(caseDir, c.sample.solidFraction, scene.particles.density,
+                           c.liquid.density, scene.particles.diameter);
   }
 
   // The user's controlDict: it includes controlDict.generated (FoamCaseWriter) and is not

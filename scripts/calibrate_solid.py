@@ -13,8 +13,10 @@ at --cell-size (`suite.py --tier bulk --scenes P-bulk --set cfdDict.cellSize=...
 `solid { tanPhi; viscosity; }` set in its constant/bulkProperties and run with ./Allrun. Score: the
 root mean square of the relative front error at --times. Writes OUT (JSON) and OUT with .csv (one
 row a grid point); with --target, the best point's solid.tanPhi and solid.viscosity go into each
-CASE/constant/bulkProperties (created if absent; nothing else changes). Bad input exits 2 before
-anything runs.
+CASE/constant/bulkProperties (created if absent; nothing else changes). `--rheology muI` scores
+instead one run with the mu(I) law at its defaults (`solid { rheology muI; }`, the Coulomb entries
+removed; OUT default results/bulk_model/solid_mui_P.json), without --target. Bad input exits 2
+before anything runs.
 """
 
 import argparse
@@ -25,7 +27,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import bulkprops, foamcase, outputs  # noqa: E402
+from mixflow import bulkprops, foamcase, foamdict, outputs  # noqa: E402
 
 SCENE = "P-bulk"
 
@@ -88,6 +90,16 @@ def set_solid(case, tan_phi, viscosity):
     bulkprops.write_text(*solid_text(case, tan_phi, viscosity))
 
 
+def set_mui(case):
+    """CASE's solid block the mu(I) law at its defaults: the Coulomb law's entries, which muI
+    refuses, removed; every other entry kept (comments are not)."""
+    tree = {k: v for k, v in bulkprops.read(case).items() if k != "FoamFile"}
+    solid = {k: v for k, v in tree.get("solid", {}).items()
+             if k not in ("tanPhi", "viscosity", "cohesion")}
+    tree["solid"] = dict(solid, rheology="muI")
+    bulkprops.write_text(bulkprops.path(case), bulkprops.HEADER + foamdict.format_dict(tree))
+
+
 def score(case, ref, times):
     rows = outputs.series(case)
     end = rows[-1][outputs.TIME]
@@ -109,10 +121,17 @@ def main():
     ap.add_argument("--times", default="0.25:3:0.25")
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "solid-calibration"))
     ap.add_argument("--target", action="append", default=[])
-    ap.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model",
-                                                  "solid_calibration.json"))
+    ap.add_argument("--rheology", choices=("coulombViscoplastic", "muI"),
+                    default="coulombViscoplastic")
+    ap.add_argument("--out")
     a = ap.parse_args()
+    mui = a.rheology == "muI"
+    a.out = a.out or os.path.join(ROOT, "results", "bulk_model",
+                                  "solid_mui_P.json" if mui else "solid_calibration.json")
     try:
+        if mui and a.target:
+            raise InputError("--target with --rheology muI: the mu(I) run is scored, not "
+                             "calibrated (allowed: --target with coulombViscoplastic)")
         tan_phis = numbers(a.tan_phi, "--tan-phi", 0, 5)  # bulkProperties solid.tanPhi's range
         viscosities = numbers(a.viscosity, "--viscosity", 1e-9, 1e3)
         cell = numbers(a.cell_size, "--cell-size", 1e-3, 0.3)[0]
@@ -132,25 +151,29 @@ def main():
              "--scenes", SCENE, "--work", os.path.dirname(base), "--set",
              f"cfdDict.cellSize={cell:g}"])
     grid = []
-    for tp in tan_phis:
-        for nu in viscosities:
-            case = os.path.join(a.work, f"tanPhi{tp:g}_nu{nu:g}")
-            if not os.path.isfile(os.path.join(case, outputs.DONE)):
-                if os.path.isdir(case):
-                    sys.exit(f"calibrate_solid: {case} exists unfinished: remove it to rerun")
-                outputs.copy_inputs(base, case)
+    points = [(None, None)] if mui else [(tp, nu) for tp in tan_phis for nu in viscosities]
+    for tp, nu in points:
+        case = os.path.join(a.work, "muI" if mui else f"tanPhi{tp:g}_nu{nu:g}")
+        if not os.path.isfile(os.path.join(case, outputs.DONE)):
+            if os.path.isdir(case):
+                sys.exit(f"calibrate_solid: {case} exists unfinished: remove it to rerun")
+            outputs.copy_inputs(base, case)
+            if mui:
+                set_mui(case)
+            else:
                 set_solid(case, tp, nu)
-                run(["./Allrun", "1"], cwd=case)
-                open(os.path.join(case, outputs.DONE), "w").close()
-            rec = {"tan_phi": tp, "viscosity_m2_s": nu, **score(case, ref, times)}
-            grid.append(rec)
-            print(f"tanPhi {tp:g} nu_s {nu:g}: rms front error {100 * rec['rms_error']:.1f} %, "
-                  f"at {times[-1]:g} s {100 * rec['final_error']:+.1f} %", flush=True)
+            run(["./Allrun", "1"], cwd=case)
+            open(os.path.join(case, outputs.DONE), "w").close()
+        rec = {"tan_phi": tp, "viscosity_m2_s": nu, **score(case, ref, times)}
+        grid.append(rec)
+        label = "muI (defaults)" if mui else f"tanPhi {tp:g} nu_s {nu:g}"
+        print(f"{label}: rms front error {100 * rec['rms_error']:.1f} %, "
+              f"at {times[-1]:g} s {100 * rec['final_error']:+.1f} %", flush=True)
     best = min(grid, key=lambda r: r["rms_error"])
     out = {"command": "/usr/bin/python3 scripts/calibrate_solid.py " + " ".join(sys.argv[1:]),
            "reference": os.path.relpath(os.path.abspath(a.reference), ROOT), "reference_end_s": ref_end,
            "cell_size_m": cell, "times_s": times, "reference_front_m": [ref[t] for t in times],
-           "score": "rms of front_bulk / front_dem - 1 over times_s",
+           "rheology": a.rheology, "score": "rms of front_bulk / front_dem - 1 over times_s",
            "best": {k: best[k] for k in ("tan_phi", "viscosity_m2_s", "rms_error", "final_error")},
            "grid": grid}
     outputs.write_json(a.out, out)
@@ -164,6 +187,9 @@ def main():
                         r["solver_cpu_s"]] + [f"{v:.4f}" for v in r["fronts_m"]])
     for t in a.target:
         set_solid(t, best["tan_phi"], best["viscosity_m2_s"])
+    if mui:
+        print(f"wrote {a.out}")
+        return 0
     print(f"best: tanPhi {best['tan_phi']:g}, nu_s {best['viscosity_m2_s']:g} m2/s, rms front "
           f"error {100 * best['rms_error']:.1f} %; wrote {a.out}")
     return 0

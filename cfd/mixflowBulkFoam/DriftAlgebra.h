@@ -134,6 +134,30 @@ inline double solidViscosity(const SolidRheology& r, double strainRate, double p
   return r.viscosity + tauY * r.regularisation * shape;
 }
 
+// Kinematic viscosity of the solid by the mu(I) law (Jop, Forterre & Pouliquen 2006): mu(I) =
+// mu_s + (mu_2 - mu_s) / (I_0 / I + 1), I = |gamma| d / sqrt(P) with P the kinematic pressure of
+// the Coulomb law (P_s / rho_s, m2/s2) and |gamma| = sqrt(2 D:D), the shear rate of a simple shear.
+// nu_se = mu(I) P (1 - exp(-m_y |gamma|)) / |gamma|: the Coulomb law's regularisation, mu_s P m_y
+// at rest.
+struct MuIRheology {
+  double muS = 0;             // static friction coefficient mu_s
+  double mu2 = 0;             // limiting friction coefficient mu_2 (>= mu_s)
+  double i0 = 1;              // I_0
+  double diameter = 0;        // grain diameter d (m)
+  double regularisation = 0;  // m_y (s)
+};
+inline double frictionCoefficient(const MuIRheology& r, double inertialNumber) {
+  return r.muS + (r.mu2 - r.muS) * inertialNumber / (r.i0 + inertialNumber);
+}
+inline double solidViscosity(const MuIRheology& r, double strainRate, double pressure) {
+  const double p = std::max(pressure, 0.0);
+  if (p == 0) return 0;  // no confinement, no friction (I infinite, mu_2 times 0)
+  const double inertial = strainRate * r.diameter / std::sqrt(p);
+  const double x = r.regularisation * strainRate;
+  const double shape = x > 1e-8 ? -std::expm1(-x) / x : 1.0 - 0.5 * x;
+  return frictionCoefficient(r, inertial) * p * r.regularisation * shape;
+}
+
 // Kinematic viscosity of a Herschel-Bulkley pore liquid as the pure-liquid cases see it
 // (OpenFOAM's HerschelBulkley): min(nu0, (tau0 + k sr^n) / sr); Newtonian for tau0 = 0, n = 1.
 struct FluidRheology {

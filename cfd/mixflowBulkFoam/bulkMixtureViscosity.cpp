@@ -28,10 +28,19 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
   drifts_.lambdaU = coeffs_.get<scalar>("lambdaU");
   drifts_.lambdaW = coeffs_.get<scalar>("lambdaW");
   drifts_.lambdaP = coeffs_.get<scalar>("lambdaP");
-  solid_.viscosity = coeffs_.get<scalar>("solidViscosity");
-  solid_.tanPhi = coeffs_.get<scalar>("tanPhi");
-  solid_.cohesion = coeffs_.get<scalar>("cohesion");
-  solid_.regularisation = coeffs_.get<scalar>("regularisation");
+  muI_ = coeffs_.lookupOrDefault<word>("solidRheology", "coulombViscoplastic") == "muI";
+  if (muI_) {
+    muIRheology_.muS = coeffs_.get<scalar>("muS");
+    muIRheology_.mu2 = coeffs_.get<scalar>("mu2");
+    muIRheology_.i0 = coeffs_.get<scalar>("I0");
+    muIRheology_.diameter = coeffs_.get<scalar>("grainDiameter");
+    muIRheology_.regularisation = coeffs_.get<scalar>("regularisation");
+  } else {
+    solid_.viscosity = coeffs_.get<scalar>("solidViscosity");
+    solid_.tanPhi = coeffs_.get<scalar>("tanPhi");
+    solid_.cohesion = coeffs_.get<scalar>("cohesion");
+    solid_.regularisation = coeffs_.get<scalar>("regularisation");
+  }
   yieldPressureFactor_ = coeffs_.get<scalar>("yieldPressureFactor");
   fluid_.tau0 = coeffs_.get<scalar>("fluidTau0");
   fluid_.k = coeffs_.get<scalar>("fluidK");
@@ -216,7 +225,9 @@ Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::calcNu() con
       U_.mesh(), dimensionedScalar("nu", dimViscosity, 0.0)));
   volScalarField& nu = tnu.ref();
   auto pointwise = [&](const mixflow::bulk::Drifts& d, scalar sS, scalar sF, scalar pm) {
-    const scalar nuS = mixflow::bulk::solidViscosity(solid_, sS, yieldFromMixturePressure(d) * pm);
+    const scalar py = yieldFromMixturePressure(d) * pm;
+    const scalar nuS = muI_ ? mixflow::bulk::solidViscosity(muIRheology_, sS, py)
+                            : mixflow::bulk::solidViscosity(solid_, sS, py);
     const scalar nuF = mixflow::bulk::fluidViscosity(fluid_, sF);
     return mixflow::bulk::mixtureDiffusivity(alphaS_, d, nuS, nuF);
   };

@@ -53,6 +53,8 @@ def main():
         ("viscosity 0", [seed, "--viscosity", "0"], ["--viscosity 0", "[1e-09, 1000.0]"]),
         ("times reversed", [seed, "--times", "3:1:0.5"], ["--times 3:1:0.5", "T0 <= T1"]),
         ("target without constant/", [seed, "--target", bare], [bare, "no constant/"]),
+        ("mu(I) with a target", [seed, "--rheology", "muI", "--target", target],
+         ["--target", "--rheology muI", "not calibrated"]),
     ]
     for what, args, needles in cases:
         r = subprocess.run(CMD + args + common, capture_output=True, text=True, env=env)

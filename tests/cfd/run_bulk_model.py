@@ -66,6 +66,21 @@ sliding-block a stiff mixture layer (the newtonian mixture with nu = 0.05 m2/s) 
               tan(delta) h^2/(2 nu) = 1 % of u0, decays in ~h^2/nu. --case-basal runs the case
               with other basal entries against the same analytic solution (law noSlip; or
               tanDelta 0.28: both fail).
+mui-incline   the mu(I) solid (solid { rheology muI; }, glass-bead defaults, d 1 mm) as a dry
+              layer (pore gas of 1.2 kg/m3 without viscosity, lambda_p = 0: the gas carries no
+              load) h = 0.01 m deep down a periodic 25 degree incline from rest (incline's
+              machinery, p_m = 0 at the stress-free top), 8, 16, 32 cells, to 5 s. Exact: the
+              Bagnold profile u(z) = (2/3)(I_theta/d) sqrt(phi g cos(theta)) [h^1.5 - (h - z)^1.5],
+              I_theta = I_0 (tan(theta)/chi - mu_s)/(mu_2 - tan(theta)/chi), phi = (1 -
+              rho_air/rho*)/alpha_s, chi = alpha_s phi (docs/bulk_model.md); u_surface 0.3413 m/s.
+              Pass: steady (last two writes within 1e-3 u_surface); the top cell within 1 % of the
+              exact value at its centre on 32 cells (measured -0.43 %); observed orders >= 1.8
+              (L2) and >= 1.3 (max; the surface's (h - z)^1.5 makes it 1.5) on both refinements
+              (measured 1.99, 2.00 and 1.49, 1.50).
+mui-rest      the same layer (16 cells) at tan(theta) = 0.8 chi mu_s (16.99 degrees, below the
+              static angle 20.90) for 1 s: the regularised law creeps at a uniform shear rate
+              <= ln(mu_s/(mu_s - tan(theta)/chi))/m_y; pass: max |U| at every write <= h times it
+              (1.61e-4 m/s; measured 0.959 of it, the top cell's centre lying dz/2 below h).
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
 """
@@ -132,12 +147,13 @@ def compare(bulk, ref, label, tol=1e-6):
 NEWTONIAN_SOLID = "solid { viscosity 2e-3; tanPhi 0; cohesion 0; }\n"
 
 
-def prepared(a, work, name, bulk_props, end, write_interval, scene_geometry=GEOMETRY, cfd=CFD):
+def prepared(a, work, name, bulk_props, end, write_interval, scene_geometry=GEOMETRY, cfd=CFD,
+             liquid=WATER):
     """A bulk case through mixflowPrepare (no mesh yet), to be edited: its transportProperties
     (the bulkMixture coefficients), fvSchemes and fvSolution are the ones a user gets."""
     case = os.path.join(work, name)
     lc.write_case(case, "content mixture;\n" + scene_geometry + PARTICLES +
-                  f"liquid {{ {WATER} }}\n", cfd + "mixtureModel bulk;\n", end, write_interval)
+                  f"liquid {{ {liquid} }}\n", cfd + "mixtureModel bulk;\n", end, write_interval)
     hdr = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
     with open(os.path.join(case, "system/demDict"), "w") as f:
         f.write(hdr % "demDict")
@@ -274,6 +290,18 @@ BAD = [
      ["constant/bulkProperties", "basal.law", "coulomb"]),
     ("drift fields without their files", "drifts { fields on; }\n",
      ["constant/bulkProperties", "fields", "constant/lambdaU"]),
+    ("solid rheology word", "solid { rheology bagnold; }\n",
+     ["constant/bulkProperties", "rheology", "coulombViscoplastic", "muI"]),
+    ("Coulomb entry with muI", "solid { rheology muI; tanPhi 0.4; }\n",
+     ["constant/bulkProperties", "tanPhi", "not a parameter of rheology muI"]),
+    ("muI entry with the Coulomb law", "solid { muS 0.4; }\n",
+     ["constant/bulkProperties", "muS", "not a parameter of rheology coulombViscoplastic"]),
+    ("mu2 below muS", "solid { rheology muI; muS 0.5; mu2 0.4; }\n",
+     ["constant/bulkProperties", "mu2", "[muS, 5]"]),
+    ("muI without regularisation", "solid { rheology muI; regularisation 0; }\n",
+     ["constant/bulkProperties", "regularisation", "(0, 1e5]"]),
+    ("muI grain diameter above range", "solid { rheology muI; grainDiameter 2; }\n",
+     ["constant/bulkProperties", "grainDiameter", "(0, 1]"]),
 ]
 
 
@@ -457,12 +485,13 @@ def rest(a, work):
 
 
 def periodic_layer(a, work, name, bulk_props, n, h, length, nx, theta, end, rho, max_dt,
-                   u0=0.0, p_ref=(0, 0.0), writes=4, functions="", top="type slip;"):
-    """A mixture (BULK_PROPS) filling a layer of depth h, periodic in x (cyclic left/right),
-    stress-free top (slip, closed), g tilted by theta, n cells across the depth, initial velocity
-    (u0, 0): the bed keeps the bottom condition mixflowPrepare wrote (no-slip, or the basal
-    law). P_REF = (cell, value) fixes p (no open boundary)."""
-    case = prepared(a, work, name, bulk_props, end, end / writes)
+                   u0=0.0, p_ref=(0, 0.0), writes=4, functions="", top="type slip;",
+                   liquid=WATER):
+    """A mixture (BULK_PROPS, pore LIQUID) filling a layer of depth h, periodic in x (cyclic
+    left/right), stress-free top (slip, closed), g tilted by theta, n cells across the depth,
+    initial velocity (u0, 0): the bed keeps the bottom condition mixflowPrepare wrote (no-slip, or
+    the basal law). P_REF = (cell, value) fixes p (no open boundary)."""
+    case = prepared(a, work, name, bulk_props, end, end / writes, liquid=liquid)
     with open(os.path.join(case, "0/U")) as f:
         bed = re.search(r"^\s*bottom\s*\{\s*(.*?)\s*\}\s*$", f.read(), re.M).group(1)
     g = (G * math.sin(theta), -G * math.cos(theta), 0.0)
@@ -655,11 +684,118 @@ def sliding_block(a, work):
     return ok
 
 
+# ------------------------------------------------------------- the mu(I) solid on an incline
+# A dry layer: the pore fluid a gas of air's density without viscosity (1e-12 Pa s, so that the
+# solid's stress is the only one) under an ambient air of 0.01 kg/m3 (its hydrostatic pressure,
+# which p_m removes, varies along the periodic slope by rho_air g sin(theta) L: 1e-6 of p_m here).
+# lambda_p = 0: the pore gas carries no load, so p_s = p_m / alpha_s holds the grains' weight.
+DRY = ("rheology Newtonian; density 1.2; viscosity 1e-12; surfaceTension 0; "
+       "air { density 0.01; viscosity 1.48e-5; }")
+MUI = ("drifts { lambdaP 0; }\n"
+       "solid { rheology muI; grainDiameter 0.001; }\n")
+MU_S, MU_2, I_0, M_Y = math.tan(math.radians(20.9)), math.tan(math.radians(32.76)), 0.279, 100.0
+
+
+MUI_ALPHA, MUI_RHO_F, MUI_RHO_AIR, MUI_H = 0.6, 1.2, 0.01, 0.01
+MUI_RHO = MUI_ALPHA * RHO_S + (1 - MUI_ALPHA) * MUI_RHO_F
+# The pressure factor phi (kappa_y p_s = phi g cos(theta) (h - z)) and the friction factor chi =
+# alpha_s phi (tan(theta) = chi mu(I)) of the dry layer (docs/bulk_model.md): kappa_y = 1 -
+# rho_f lambda_p / rho_s = 1 and Lambda_p = alpha_s + lambda_p alpha_f = alpha_s.
+MUI_PHI = (1 - MUI_RHO_AIR / MUI_RHO) / MUI_ALPHA
+MUI_CHI = MUI_ALPHA * MUI_PHI
+
+
+def mui_layer(a, work, name, n, theta, end, max_dt, writes):
+    """The dry mu(I) layer (alpha_s 0.6, rho_s 2500, d 1 mm, h 0.01 m, 4 cells along 0.01 m) on a
+    no-slip bed down theta, from rest; p fixed in the top cell so that p_m = 0 at the surface."""
+    rho, rho_air, h, nx = MUI_RHO, MUI_RHO_AIR, MUI_H, 4
+    dz, dx = h / n, h / nx
+    top = (n - 1) * nx
+    # p = rho* p_m + rho_air g.x in the top cell (x = dx/2, z = h - dz/2), p_m = phi alpha g cos dz/2.
+    gx = G * math.sin(theta) * dx / 2 - G * math.cos(theta) * (h - dz / 2)
+    p_top = (rho - rho_air) * G * math.cos(theta) * dz / 2 + rho_air * gx
+    return periodic_layer(a, work, name, MUI, n, h, h, nx, theta, end, rho, max_dt,
+                          p_ref=(top, p_top), writes=writes, liquid=DRY)
+
+
+def mui_incline(a, work):
+    """The Bagnold profile of the mu(I) law down a 25 degree incline on 8, 16, 32 cells."""
+    h, d, theta = MUI_H, 0.001, math.radians(25)
+    # From rest the layer's transient decays by ~0.4 every 0.5 s (e-folding 0.5 s): after 5 s
+    # (10 writes) it is below 1e-3 of the surface velocity. Steps of viscous number 4 at the bed's
+    # flowing viscosity (the Courant number 0.5 limits 8 cells).
+    end, vn, writes = 5.0, 4.0, 10
+    ok, errs = True, {}
+    for n in (8, 16, 32):
+        phi, mu = MUI_PHI, math.tan(theta) / MUI_CHI
+        i_theta = I_0 * (mu - MU_S) / (MU_2 - mu)
+        amp = 2 / 3 * i_theta / d * math.sqrt(phi * G * math.cos(theta))
+        u_surf = amp * h ** 1.5
+        # Steps of viscous number a.mui_vn at the bed's flowing viscosity g sin(theta) h / u'(0).
+        nu_bed = G * math.sin(theta) * h / (1.5 * amp * math.sqrt(h))
+        case = mui_layer(a, work, f"bulk_mui_incline_{n}", n, theta, end, vn * (h / n) ** 2 / nu_bed,
+                         writes)
+        run_bulk(a, case)
+        times = field_times(case)
+        last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
+        change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / u_surf
+        ok &= lc.check(change <= 1e-3, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
+                       f"{change:.1e} u_surface (<= 1e-3)")
+        dz, err2, errmax = h / n, 0.0, 0.0
+        for c, u in enumerate(last):
+            z = (c // 4 + 0.5) * dz
+            e = u[0] - amp * (h ** 1.5 - (h - z) ** 1.5)
+            err2 += e * e / len(last)
+            errmax = max(errmax, abs(e))
+        # Surface velocity: the top cell's, extrapolated to z = h with the exact profile's slope
+        # difference (the cell centre lies dz/2 below the surface).
+        top = [u[0] for c, u in enumerate(last) if c // 4 == n - 1]
+        u_top = sum(top) / len(top)
+        surf_err = (u_top - amp * (h ** 1.5 - (dz / 2) ** 1.5)) / u_surf
+        errs[n] = (math.sqrt(err2) / u_surf, errmax / u_surf, surf_err)
+        print(f"  n = {n}: I_theta {i_theta:.5f}, u_surface {u_surf:.5f} m/s; top cell "
+              f"{u_top:.5f} m/s ({100 * surf_err:+.3f} % of u_surface against the exact value "
+              f"there); L2 error {errs[n][0]:.3e}, max {errs[n][1]:.3e} u_surface", flush=True)
+    ok &= lc.check(abs(errs[32][2]) <= 0.01,
+                   f"top-cell velocity on 32 cells within {100 * abs(errs[32][2]):.3f} % of the "
+                   f"exact profile's (<= 1 %)")
+    # u'' ~ (h - z)^(-1/2) at the free surface: the top cell's error falls as dz^1.5 (the max),
+    # the smooth rest as dz^2 (which the L2 norm sees).
+    for c, f in ((8, 16), (16, 32)):
+        for k, name, least in ((0, "L2", 1.8), (1, "max", 1.3)):
+            order = math.log(errs[c][k] / errs[f][k], 2)
+            ok &= lc.check(order >= least, f"{name} order {c} -> {f} cells: {order:.3f} "
+                           f"(>= {least:g})")
+    return ok
+
+
+def mui_rest(a, work):
+    """Below the static angle (tan(theta) = 0.8 chi mu_s) the mu(I) layer stays at rest up to
+    the regularisation's creep: mu(I) (1 - exp(-m_y |gamma|)) = tan(theta)/chi with mu(I) >= mu_s
+    bounds the shear rate by ln(mu_s / (mu_s - tan(theta)/chi)) / m_y, uniform in depth."""
+    h, n, chi = MUI_H, 16, MUI_CHI
+    theta = math.atan(0.8 * chi * MU_S)
+    case = mui_layer(a, work, "bulk_mui_rest", n, theta, 1.0, 1e-3, 4)
+    rate = math.log(MU_S / (MU_S - math.tan(theta) / chi)) / M_Y
+    bound = rate * h
+    run_bulk(a, case)
+    ok = True
+    for t in field_times(case):
+        umax = max(math.hypot(u[0], u[1]) for u in
+                   lc.fc.read_internal_field(os.path.join(case, t, "U")))
+        ok &= lc.check(umax <= bound, f"theta {math.degrees(theta):.3f} deg (atan mu_s "
+                       f"{math.degrees(math.atan(chi * MU_S)):.3f}): t = {t} s, max |U| "
+                       f"{umax:.4e} m/s (<= h ln(mu_s/(mu_s - tan(theta)/chi))/m_y = "
+                       f"{bound:.4e}: {umax / bound:.5f} of it)")
+    return ok
+
+
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "drift-fields": drift_fields, "drift-field-range": drift_field_range,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
              "closed-box": closed_box, "rest": rest,
-             "incline": incline, "sliding-block": sliding_block}
+             "incline": incline, "sliding-block": sliding_block,
+             "mui-incline": mui_incline, "mui-rest": mui_rest}
 
 
 def main():

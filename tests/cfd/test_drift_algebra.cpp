@@ -98,12 +98,30 @@ TEST(DriftAlgebra, Rheologies) {
   EXPECT_NEAR(solidViscosity(s, 1e-12, p), 0.03 + 100 * tauY, 1e-6);
   const double rate = 50;  // m_y |D| = 5000: exp(-x) negligible
   EXPECT_NEAR(solidViscosity(s, rate, p) * rate, 0.03 * rate + tauY, 1e-12);
-  EXPECT_NEAR(solidViscosity(s, 1, -3.0), 0.03 + 0.2 * -std::expm1(-100.0), 1e-12);  // p < 0: cohesion only
+  EXPECT_NEAR(solidViscosity(s, 1, -3.0), 0.03 + 0.2 * -std::expm1(-100.0),
+              1e-12);  // p < 0: cohesion only
 
   const FluidRheology hb{0.03, 4.279e-3, 0.479, 10};
   EXPECT_NEAR(fluidViscosity(hb, 2.0), (0.03 + 4.279e-3 * std::pow(2.0, 0.479)) / 2.0, 1e-15);
   EXPECT_DOUBLE_EQ(fluidViscosity(hb, 1e-9), 10);
   EXPECT_NEAR(fluidViscosity({0, 1e-6, 1, 0}, 3.0), 1e-6, 1e-20);
+}
+
+// The mu(I) law: mu_s at I = 0, the midpoint (mu_s + mu_2)/2 at I = I_0, mu_2 as I grows; the
+// stress nu_se |gamma| is mu(I) P where m_y |gamma| is large, the viscosity mu_s P m_y at rest, and
+// no stress without pressure.
+TEST(DriftAlgebra, MuIRheology) {
+  const MuIRheology r{0.38, 0.64, 0.279, 1e-3, 100};
+  EXPECT_DOUBLE_EQ(frictionCoefficient(r, 0.0), 0.38);
+  EXPECT_NEAR(frictionCoefficient(r, 0.279), 0.51, 1e-15);
+  EXPECT_NEAR(frictionCoefficient(r, 1e12), 0.64, 1e-12);
+  const double p = 0.2, rate = 80;  // I = 80 * 1e-3 / sqrt(0.2) = 0.1789; m_y |gamma| = 8000
+  const double i = rate * 1e-3 / std::sqrt(p);
+  EXPECT_NEAR(solidViscosity(r, rate, p) * rate, (0.38 + 0.26 / (0.279 / i + 1)) * p, 1e-14);
+  EXPECT_NEAR(solidViscosity(r, 0.0, p), 0.38 * p * 100, 1e-12);
+  EXPECT_NEAR(solidViscosity(r, 1e-12, p), 0.38 * p * 100, 1e-6);
+  EXPECT_DOUBLE_EQ(solidViscosity(r, rate, 0.0), 0);
+  EXPECT_DOUBLE_EQ(solidViscosity(r, rate, -1.0), 0);
 }
 
 }  // namespace
