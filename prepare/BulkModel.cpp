@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 #include "Dictionary.h"
 #include "DriftAlgebra.h"
+#include "FoamFieldFile.h"
 #include "Schema.h"
 
 namespace mixflow::cfd {
@@ -113,9 +115,25 @@ double BulkModel::yieldPressureFactor(double fluidDensity) const {
 }
 
 double BulkModel::maxViscosity(double height, double fluidDensity, double nuFluidMax) const {
-  const bulk::Drifts d{lambdaU, lambdaW, lambdaP};
+  double mu = maxViscosity(height, fluidDensity, nuFluidMax, {lambdaU, lambdaW, lambdaP});
+  const Schema& sc = schema();
+  const auto inRange = [&](double v, const char* key) {
+    const Range& r = sc.param(std::string("drifts.") + key).range;
+    return v >= bulk::driftLowerBound(solidFraction, r.lo) && v <= r.hi;
+  };
+  for (const auto& c : fieldDrifts)
+    if (inRange(c[0], "lambdaU") && inRange(c[1], "lambdaW") && inRange(c[2], "lambdaP"))
+      mu = std::max(mu, maxViscosity(height, fluidDensity, nuFluidMax, c));
+  return mu;
+}
+
+double BulkModel::maxViscosity(double height, double fluidDensity, double nuFluidMax,
+                               const std::array<double, 3>& drifts) const {
+  const bulk::Drifts d{drifts[0], drifts[1], drifts[2]};
   const double pS = kGravity * height / bulk::lambdaCoefficients(solidFraction, d).p;
-  const double py = yieldPressureFactor(fluidDensity) * pS;
+  const double kappa =
+      yieldPressure == "paper" ? 1.0 : 1.0 - fluidDensity * drifts[2] / solidDensity;
+  const double py = kappa * pS;
   const double nuS =
       solidRheology == "muI"
           ? bulk::solidViscosity(
@@ -147,15 +165,31 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   b.driftSource = sc.text(dr, "drifts.source");
   b.driftFields = sc.flag(dr, "drifts.fields");
   if (b.driftFields) {
-    // The values are checked cell by cell by mixflowBulkFoam, which has the mesh; here only that
-    // the files are there, so that a case without them fails before anything is written.
+    // The values are range-checked cell by cell by mixflowBulkFoam, which has the mesh; here the
+    // files must be there (a case without them fails before anything is written) and their
+    // values feed the time-step bound.
+    std::vector<std::vector<double>> values;
+    long cells = -1;
     for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
       const fs::path field = fs::path(caseDir) / "constant" / f;
       if (!fs::exists(field))
         dr.fail("fields", "on, but there is no " + field.string() +
                               " (a volScalarField; scripts/calibrate_drifts.py --fields writes "
                               "lambdaU, lambdaW and lambdaP)");
+      long n = -1;
+      values.push_back(readInternalField(field.string(), 1, n));
+      if (n >= 0 && cells >= 0 && n != cells)
+        throw InputError(field.string() + ": internalField has " + std::to_string(n) +
+                         " cells, the other drift fields " + std::to_string(cells));
+      if (n >= 0) cells = n;
     }
+    std::set<std::array<double, 3>> distinct;
+    const auto at = [](const std::vector<double>& v, long i) {
+      return v.size() == 1 ? v[0] : v[i];
+    };
+    for (long i = 0; i < std::max(cells, 1L); ++i)
+      distinct.insert({at(values[0], i), at(values[1], i), at(values[2], i)});
+    b.fieldDrifts.assign(distinct.begin(), distinct.end());
   }
 
   const Dictionary s = d.subDictOrEmpty("solid");

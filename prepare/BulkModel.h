@@ -5,7 +5,9 @@
 // from it.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "Schema.h"
 
@@ -19,9 +21,10 @@ struct BulkModel {
   double lambdaU = 1, lambdaW = 1, lambdaP = 1;
   std::string driftSource = "default (lambda = 1)";  // what set them (mixflowCalibrate records it)
   // drifts.fields on: the solver takes lambdaU, lambdaW, lambdaP cell by cell from the fields
-  // constant/lambdaU, ... (stage C of docs/calibration.md); the constants above then only set
-  // prepare's time-step bound.
+  // constant/lambdaU, ... (stage C of docs/calibration.md); fieldDrifts holds their distinct
+  // (lambdaU, lambdaW, lambdaP) cell triples, so that the time-step bound sees every cell.
   bool driftFields = false;
+  std::vector<std::array<double, 3>> fieldDrifts;
   // Solid rheology: coulombViscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik
   // et al. (nu_s and tanPhi calibrated on the dry scene P against its DEM run,
   // docs/calibration.md); or muI (Jop et al. 2006) with the same pressure and regularisation.
@@ -48,8 +51,12 @@ struct BulkModel {
   // kappa_y of the yield pressure kappa_y p_s: 1 (paper) or 1 - rho_f lambda_p / rho_s.
   double yieldPressureFactor(double fluidDensity) const;
   // Largest dynamic viscosity (Pa s) the mixture reaches: at rest, at the kinematic pressure g H
-  // of a column of height H, with the pore liquid at its cap (nuFluidMax, m2/s).
+  // of a column of height H, with the pore liquid at its cap (nuFluidMax, m2/s); with drift
+  // fields, the largest over their cells' drifts inside the allowed range (the solver refuses
+  // the others).
   double maxViscosity(double height, double fluidDensity, double nuFluidMax) const;
+  double maxViscosity(double height, double fluidDensity, double nuFluidMax,
+                      const std::array<double, 3>& drifts) const;
 };
 
 // Reads caseDir/constant/bulkProperties (absent: all defaults) for a mixture of liquid density

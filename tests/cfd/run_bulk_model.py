@@ -415,6 +415,43 @@ def drift_field_range(a, work):
     return ok
 
 
+def prepared_bound(a, work, name, consts, fields):
+    """(viscosity at rest in Pa s, maxDeltaT in s) of mixflowPrepare for a bulk case with drift
+    constants CONSTS and, if FIELDS, drift fields {name: 'uniform V' or a list of cell values}."""
+    text = "".join(f"{k} {v:g}; " for k, v in consts.items())
+    case = bulk_case(work, name, WATER, f"drifts {{ {text}{'fields on; ' if fields else ''}}}\n",
+                     0.3)
+    for k, v in (fields or {}).items():
+        drift_field_file(case, k, v)
+    log = lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    with open(os.path.join(case, "system/controlDict.generated")) as f:
+        dt = float(re.search(r"^maxDeltaT\s+(\S+);", f.read(), re.M).group(1))
+    return float(re.search(r"viscosity at rest up to (\S+) Pa s", log).group(1)), dt
+
+
+def drift_field_step(a, work):
+    """With drift fields, mixflowPrepare's time-step bound (the viscous number limit on the
+    mixture's viscosity at rest, and the PISO correctors chosen from it) takes the stiffest cell:
+    constant drifts (1.3, 0.8, 0.6) with one field cell at lambda_p = -1 give the viscosity and
+    maxDeltaT of the constants (1.3, 0.8, -1); uniform fields equal to the constants give the
+    constants' own."""
+    stiff = dict(FIELD_DRIFTS, lambdaP=-1.0)
+    base = prepared_bound(a, work, "bulk_step_constants", FIELD_DRIFTS, None)
+    bound = prepared_bound(a, work, "bulk_step_stiff_constants", stiff, None)
+    uniform = prepared_bound(a, work, "bulk_step_uniform_fields", FIELD_DRIFTS,
+                             {k: f"uniform {v:g}" for k, v in FIELD_DRIFTS.items()})
+    cells = {k: [v] * 50 for k, v in FIELD_DRIFTS.items()}
+    cells["lambdaP"][17] = -1.0
+    one = prepared_bound(a, work, "bulk_step_one_cell", FIELD_DRIFTS, cells)
+    ok = lc.check(bound[0] > 1.1 * base[0], f"lambda_p -1 raises the viscosity at rest: "
+                  f"{bound[0]:.4g} Pa s against {base[0]:.4g} Pa s")
+    ok &= lc.check(uniform == base, f"uniform fields equal to the constants: {uniform} against "
+                   f"{base} (Pa s, s)")
+    ok &= lc.check(one == bound, f"one cell at lambda_p -1: {one} against the stiff constants' "
+                   f"{bound} (Pa s, s)")
+    return ok
+
+
 def closed_box(a, work):
     """The newtonian scenario's column collapsing and sloshing in a 0.3 m channel closed all
     round (outlet and top made walls): the mixture volume sum(alpha V) of every step equals the first,
@@ -792,6 +829,7 @@ def mui_rest(a, work):
 
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "drift-fields": drift_fields, "drift-field-range": drift_field_range,
+             "drift-field-step": drift_field_step,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
              "closed-box": closed_box, "rest": rest,
              "incline": incline, "sliding-block": sliding_block,
