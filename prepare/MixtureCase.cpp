@@ -108,7 +108,9 @@ double terminalVelocity(double d, double rhoS, double rhoF, double mu) {
 }
 
 // The held drag's relaxation number of a lone grain at its terminal velocity:
-// s = beta T / m = (1 - rho_f / rho_s) g T / u_t.
+// s = beta T / m = (1 - rho_f / rho_s) g T / u_t. Held over T, the speed's deviation from u_t
+// is multiplied by 1 - n s per interval, n = d ln F / d ln u of the drag at Re_t (1 in Stokes
+// flow, 1 + 0.63 sqrt(Re) / (0.63 sqrt(Re) + 4.8) for Di Felice's): unstable above n s = 2.
 void checkDragRelaxation(const LiquidCase& c, const dem::Scene& scene,
                          const coupling::CouplingProperties& props, MixtureSetup& m) {
   const double d = scene.particles.diameter, rho = scene.particles.density;
@@ -119,8 +121,10 @@ void checkDragRelaxation(const LiquidCase& c, const dem::Scene& scene,
   const double perSecond = (1 - c.liquid.density / rho) * kGravity / ut;  // s / T
   m.relaxation = perSecond * c.coupledDeltaT;
   if (props.dragIntegration != "held") return;
+  const double root = 0.63 * std::sqrt(c.liquid.density * ut * d / mu);
+  const double slope = 1 + root / (root + 4.8);
   const double limit =
-      props.dragRelaxationLimit > 0 ? props.dragRelaxationLimit : kHeldRelaxationMax;
+      props.dragRelaxationLimit > 0 ? props.dragRelaxationLimit : kHeldRelaxationMax / slope;
   const long most = static_cast<long>(std::floor(limit / (perSecond * m.demTimeStep) * (1 + 1e-9)));
   const std::string what = "value " + std::to_string(m.exchangeEvery) +
                            " gives an exchange interval T = " + num(c.coupledDeltaT) +
@@ -133,15 +137,16 @@ void checkDragRelaxation(const LiquidCase& c, const dem::Scene& scene,
   if (m.relaxation <= limit) return;
   if (props.dragRelaxationLimit <= 0 && !capped)
     props.dict.fail("exchangeEvery",
-                    what + " > " + num(kHeldRelaxationMax) +
-                        ": a drag held over the interval without dragRelaxationLimit makes the "
+                    what + " > 2 / n = " + num(limit) + " (n = d ln F / d ln u = " + num(slope) +
+                        " at Re_t = " + num(c.liquid.density * ut * d / mu) +
+                        "): a drag held over the interval without dragRelaxationLimit makes the "
                         "settling speed oscillate and grow there (results/stability); "
                         "dragIntegration implicit is stable at any interval; " +
                         (most >= 1 ? "allowed range [1, " + std::to_string(most) + "]"
                                    : "even exchangeEvery 1 exceeds it: lower the DEM step"));
   else if (props.dragRelaxationLimit <= 0)
-    m.warnings.push_back(props.dict.where("exchangeEvery") + ": " + what + " > " +
-                         num(kHeldRelaxationMax) +
+    m.warnings.push_back(props.dict.where("exchangeEvery") + ": " + what +
+                         " > 2 / n = " + num(limit) +
                          ": a held drag without dragRelaxationLimit oscillates and grows where "
                          "the liquid is at its cap; exchangeEvery <= " +
                          std::to_string(most) + ", or dragIntegration implicit");

@@ -17,10 +17,10 @@
 //   - the held drag's relaxation number s = beta T / m of a lone grain settling at its Di Felice
 //     terminal velocity u_t in the liquid (beta = (m - m_f) g / u_t; a yield-stress liquid at its
 //     viscosity cap): with dragIntegration held and no dragRelaxationLimit, s above
-//     kHeldRelaxationMax is refused for a Newtonian liquid and warned for a capped one (the
-//     settling speed oscillates and grows, results/stability); with a limit, s above it is warned
-//     (the drag is clamped to limit x m / T and the grain settles too fast). The implicit drag is
-//     stable at any s.
+//     kHeldRelaxationMax / n (n = d ln F / d ln u at the terminal Reynolds number) is refused for a
+//     Newtonian liquid and warned for a capped one (the settling speed oscillates and grows,
+//     results/stability); with a limit, s above it is warned (the drag is clamped to limit x m / T
+//     and the grain settles too fast). The implicit drag is stable at any s.
 #pragma once
 
 #include <ostream>
@@ -34,8 +34,9 @@ namespace mixflow::cfd {
 inline constexpr double kCellDiametersMin = 1.0;
 inline constexpr double kCellDiametersWarn = 3.0;
 inline constexpr double kCourantMax = 1.0;
-// The largest relaxation number beta T / m at which a drag held over the exchange interval stays
-// within 3 % of the terminal velocity (results/stability/drag_interval.csv).
+// The largest linearised relaxation number n beta T / m (n = d ln F / d ln u of the drag) at
+// which a drag held over the exchange interval settles a lone grain at its terminal velocity
+// (results/stability/drag_interval.csv).
 inline constexpr double kHeldRelaxationMax = 2.0;
 
 struct MixtureSetup {
