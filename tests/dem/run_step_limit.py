@@ -9,7 +9,7 @@ as system/demDict maxHertzFraction bounds it (dem/Scene.cpp hertzTimeMin).
 Pass:
   - no grain lost (a diverging contact throws grains through the walls);
   - energy is not gained: the kinetic energy left is below 1 % of the potential energy released
-    (measured 0.0003-0.015 % at 0.05-0.28 t_Hertz);
+    (measured at most 0.09 % up to 0.28 t_Hertz);
   - the largest overlap is below 3 x the static Hertz overlap of a grain-grain contact carrying a
     column of 8 grains (measured 1.2-2.2 x over the same range: force chains concentrate the
     pile's weight, and the pile is still slightly moving).
