@@ -90,6 +90,76 @@ void checkCoupledStep(const LiquidCase& c, const coupling::CouplingProperties& p
                         std::to_string(static_cast<long>(c.writeInterval / m.demTimeStep)) + "]");
 }
 
+// Terminal velocity of a lone sphere under Di Felice's single-particle drag,
+// Cd = (0.63 + 4.8 / sqrt(Re))^2 (coupling/DiFeliceDrag.cpp at eps_f = 1); 0 if it does not sink.
+double terminalVelocity(double d, double rhoS, double rhoF, double mu) {
+  if (rhoS <= rhoF || mu <= 0) return 0;
+  const double weight = (rhoS - rhoF) * kGravity * d * d * d / 6.0;  // over pi
+  const auto drag = [&](double u) {
+    const double cd = std::pow(0.63 + 4.8 / std::sqrt(rhoF * u * d / mu), 2);
+    return 0.5 * cd * rhoF * u * u * d * d / 4.0;  // over pi
+  };
+  double lo = 1e-30, hi = 1e3;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (drag(mid) < weight ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+// The held drag's relaxation number of a lone grain at its terminal velocity:
+// s = beta T / m = (1 - rho_f / rho_s) g T / u_t. Held over T, the speed's deviation from u_t
+// is multiplied by 1 - n s per interval, n = d ln F / d ln u of the drag at Re_t (1 in Stokes
+// flow, 1 + 0.63 sqrt(Re) / (0.63 sqrt(Re) + 4.8) for Di Felice's): unstable above n s = 2.
+void checkDragRelaxation(const LiquidCase& c, const dem::Scene& scene,
+                         const coupling::CouplingProperties& props, MixtureSetup& m) {
+  const double d = scene.particles.diameter, rho = scene.particles.density;
+  const bool capped = c.liquid.yieldStressModel();
+  const double mu = capped ? c.liquid.viscosityCap : c.liquid.viscosity;
+  const double ut = terminalVelocity(d, rho, c.liquid.density, mu);
+  if (ut <= 0) return;
+  const double perSecond = (1 - c.liquid.density / rho) * kGravity / ut;  // s / T
+  m.relaxation = perSecond * c.coupledDeltaT;
+  if (props.dragIntegration != "held") return;
+  const double root = 0.63 * std::sqrt(c.liquid.density * ut * d / mu);
+  const double slope = 1 + root / (root + 4.8);
+  const double limit =
+      props.dragRelaxationLimit > 0 ? props.dragRelaxationLimit : kHeldRelaxationMax / slope;
+  const long most = static_cast<long>(std::floor(limit / (perSecond * m.demTimeStep) * (1 + 1e-9)));
+  const std::string what = "value " + std::to_string(m.exchangeEvery) +
+                           " gives an exchange interval T = " + num(c.coupledDeltaT) +
+                           " s at which a lone grain's drag relaxation number beta T / m = " +
+                           "(1 - rho_f / rho_s) g T / u_t is " + num(m.relaxation) +
+                           " (Di Felice terminal velocity u_t = " + num(ut) +
+                           " m/s for d = " + num(d) + " m, rho_s = " + num(rho) +
+                           " kg/m3, mu = " + num(mu) + " Pa s" +
+                           (capped ? ", the liquid's viscosityCap" : "") + ")";
+  if (m.relaxation <= limit) return;
+  if (props.dragRelaxationLimit <= 0 && !capped)
+    props.dict.fail("exchangeEvery",
+                    what + " > 2 / n = " + num(limit) + " (n = d ln F / d ln u = " + num(slope) +
+                        " at Re_t = " + num(c.liquid.density * ut * d / mu) +
+                        "): a drag held over the interval without dragRelaxationLimit makes the "
+                        "settling speed oscillate and grow there (results/stability); "
+                        "dragIntegration implicit is stable at any interval; " +
+                        (most >= 1 ? "allowed range [1, " + std::to_string(most) + "]"
+                                   : "even exchangeEvery 1 exceeds it: lower the DEM step"));
+  else if (props.dragRelaxationLimit <= 0)
+    m.warnings.push_back(props.dict.where("exchangeEvery") + ": " + what +
+                         " > 2 / n = " + num(limit) +
+                         ": a held drag without dragRelaxationLimit oscillates and grows where "
+                         "the liquid is at its cap; exchangeEvery <= " +
+                         std::to_string(most) + ", or dragIntegration implicit");
+  else
+    m.warnings.push_back(props.dict.where("exchangeEvery") + ": " + what +
+                         " > dragRelaxationLimit " + num(props.dragRelaxationLimit) +
+                         ": the held drag is clamped to limit x m / T, so a grain settles up to "
+                         "s / limit times faster than its drag law gives (results/stability); "
+                         "exchangeEvery <= " +
+                         std::to_string(most) +
+                         ", or dragIntegration implicit (exact at any interval)");
+}
+
 // The liquid's law in the coupling's terms (SI, dynamic), as mixflowCoupled reads it back from
 // the transportProperties that writeFoamCase makes of c (Newtonian: no cap).
 coupling::LiquidLaw liquidLaw(const LiquidCase& c) {
@@ -132,6 +202,7 @@ void checkMixture(LiquidCase& c, const dem::Scene& scene, MixtureSetup& m) {
   m.exchangeEvery = props.exchangeEvery;
   c.coupledDeltaT = m.exchangeEvery * m.demTimeStep;
   checkCoupledStep(c, props, m);
+  checkDragRelaxation(c, scene, props, m);
   checkCellsAgainstGrains(c, m);
   m.demScriptPath = props.demScript.front() == '/'
                         ? props.demScript
@@ -216,8 +287,9 @@ void describeMixture(const MixtureSetup& m, const LiquidCase& c, std::ostream& o
        << " m; ";
   os << "CFD step " << c.coupledDeltaT << " s = " << m.exchangeEvery << " x DEM step "
      << m.demTimeStep << " s, Courant number estimate " << num(m.courant)
-     << " at 2 sqrt(g H) = " << num(m.frontSpeed) << " m/s; cells of " << num(cellDiameters)
-     << " d; DEM script " << m.demScriptPath << "\n";
+     << " at 2 sqrt(g H) = " << num(m.frontSpeed)
+     << " m/s; lone-grain drag relaxation beta T / m = " << num(m.relaxation) << "; cells of "
+     << num(cellDiameters) << " d; DEM script " << m.demScriptPath << "\n";
   if (!m.settled)
     os << "[mixflowPrepare] checked without the settled sample; left to mixflowPrepare after "
           "mixflowDem -settleOnly: the settled height inside the channel, the sample's DEM inputs "

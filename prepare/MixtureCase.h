@@ -13,7 +13,14 @@
 //     the grains over cells of a few diameters);
 //   - the coupled step's Courant number estimate Co = dt U / min(dx, dy), dt = exchangeEvery x DEM
 //     step and U = 2 sqrt(g H) the dam-break front speed (Ritter), H the fill height: above
-//     kCourantMax refused, above cfdDict maxCo warned; the CFD step must not exceed writeInterval.
+//     kCourantMax refused, above cfdDict maxCo warned; the CFD step must not exceed writeInterval;
+//   - the held drag's relaxation number s = beta T / m of a lone grain settling at its Di Felice
+//     terminal velocity u_t in the liquid (beta = (m - m_f) g / u_t; a yield-stress liquid at its
+//     viscosity cap): with dragIntegration held and no dragRelaxationLimit, s above
+//     kHeldRelaxationMax / n (n = d ln F / d ln u at the terminal Reynolds number) is refused for a
+//     Newtonian liquid and warned for a capped one (the settling speed oscillates and grows,
+//     results/stability); with a limit, s above it is warned (the drag is clamped to limit x m / T
+//     and the grain settles too fast). The implicit drag is stable at any s.
 #pragma once
 
 #include <ostream>
@@ -27,6 +34,10 @@ namespace mixflow::cfd {
 inline constexpr double kCellDiametersMin = 1.0;
 inline constexpr double kCellDiametersWarn = 3.0;
 inline constexpr double kCourantMax = 1.0;
+// The largest linearised relaxation number n beta T / m (n = d ln F / d ln u of the drag) at
+// which a drag held over the exchange interval settles a lone grain at its terminal velocity
+// (results/stability/drag_interval.csv).
+inline constexpr double kHeldRelaxationMax = 2.0;
 
 struct MixtureSetup {
   bool settled = false;      // false: checked before the settling (the scene's nominal sample)
@@ -37,6 +48,7 @@ struct MixtureSetup {
   long exchangeEvery = 0;    // DEM steps per CFD step
   double frontSpeed = 0;     // m/s: 2 sqrt(g H), the velocity scale of the Courant estimate
   double courant = 0;        // CFD step x frontSpeed / min(dx, dy)
+  double relaxation = 0;     // beta T / m of a lone grain at its terminal velocity
   std::vector<std::string> warnings;
   std::string demScriptPath;  // where the DEM script is written
   std::string demScript;      // its text (prepareMixture only)
