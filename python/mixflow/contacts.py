@@ -87,3 +87,36 @@ def liggghts_virial_trace(rows, columns):
     c = {n: k for k, n in enumerate(columns)}
     return -float(np.sum(rows[:, c["c_pstress[1]"]] + rows[:, c["c_pstress[2]"]] +
                          rows[:, c["c_pstress[3]"]]))
+
+
+def settled_stats(case):
+    """The settled sample of a dry case run through its first snapshot (mixflowDem with a short
+    endTime): summary.json's settled block and sample_contacts() of VTK/particles/particles_0.bin
+    (the gate is open but no step has run). Moduli and walls from the case's sceneProperties
+    (paper material where it sets none)."""
+    import json
+    import os
+    from mixflow import foamdict, outputs
+    sp = foamdict.read_dict(os.path.join(case, "constant", "sceneProperties"))
+    part, sample = sp.get("particles", {}), sp["sample"]
+    young = float(part.get("youngModulus", 70e9))
+    wall_young = float(part.get("wallYoungModulus", 700e9))
+    poisson = float(part.get("poissonRatio", 0.3))
+    length, width = float(sample["length"]), float(sample["width"])
+    periodic = sp["channel"].get("sideWalls", "walls") == "periodic"
+    walls = [(1, 0.0, 1), (0, 0.0, 1), (0, length, -1)]
+    if not periodic:
+        walls += [(2, 0.0, 1), (2, width, -1)]
+    rows = outputs.read_binary_snapshot(os.path.join(case, outputs.SNAPSHOT_BIN.format(step=0)))
+    cols = outputs.SNAPSHOT_COLUMNS
+    with open(os.path.join(case, "postProcessing", "dem", "summary.json")) as f:
+        settled = json.load(f)["settled"]
+    stats = sample_contacts(rows, cols, young, wall_young, poisson, walls,
+                            width if periodic else None)
+    stats.update({k: settled[k] for k in ("height_m", "sample_solid_fraction",
+                                          "bulk_solid_fraction", "settle_time_s", "converged")})
+    # Hertz forces of the positions against LIGGGHTS' own contact virial: equal only if LIGGGHTS
+    # ran at the moduli given here (after a stiffening, the full ones).
+    stats["virial_ratio"] = (virial_trace(rows, cols, young, poisson, width if periodic else None)
+                             / liggghts_virial_trace(rows, cols))
+    return stats
