@@ -111,7 +111,7 @@ Schema makeSchema() {
                       "settles at youngModulusFactor. Recorded in dem/settled.inputs")
               .alsoAllowed("< youngModulusFactor"),
           // One sudden step releases (ratio − 1) × the contacts' elastic energy: 1000× at once
-          // blows a settled column apart, a factor 2 moves grains by a fraction of a micrometre.
+          // throws a settled column apart; ratios 1.6-2 leave it at rest (docs/parameters.md).
           integerParam("settle.stiffenSteps", s.stiffenSteps, 1, 100,
                        "geometric steps from stiffenFrom to youngModulusFactor (ratio (factor / "
                        "stiffenFrom)^(1/steps)); each modulus at its own auto step, the last at "
