@@ -107,6 +107,19 @@ Schema makeSchema() {
                     "(full), or under their buoyant weight g (1 − ρ_f/ρ_s) (buoyant), so that the "
                     "saturated column starts with the contact forces it keeps in the liquid; dry "
                     "scenes: full"),
+          scalarParam("settle.stiffenFrom", s.stiffenFrom, Range::closed(0.0, 1.0), "",
+                      "youngModulusFactor the sample settles at (with its own auto step, "
+                      "rayleighFraction × T_R) before it is stiffened to youngModulusFactor; 0: it "
+                      "settles at youngModulusFactor. Recorded in dem/settled.inputs")
+              .alsoAllowed("< youngModulusFactor"),
+          // One sudden step releases (ratio − 1) × the contacts' elastic energy: 1000× at once
+          // throws a settled column apart; ratios 1.6-2 leave it at rest (docs/parameters.md).
+          integerParam("settle.stiffenSteps", s.stiffenSteps, 1, 100,
+                       "geometric steps from stiffenFrom to youngModulusFactor (ratio (factor / "
+                       "stiffenFrom)^(1/steps)); each modulus at its own auto step, the last at "
+                       "timeStep"),
+          scalarParam("settle.stiffenStepTime", s.stiffenStepTime, Range::positive(), "s",
+                      "at each modulus of the stiffening, with the settling friction"),
       });
 }
 
@@ -120,6 +133,9 @@ void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
   s.seed = sc.integer(d, "settle.seed");
   s.checkpointInterval = sc.scalar(d, "settle.checkpointInterval");
   s.gravity = sc.word(d, "settle.gravity");
+  s.stiffenFrom = sc.scalar(d, "settle.stiffenFrom");
+  s.stiffenSteps = sc.integer(d, "settle.stiffenSteps");
+  s.stiffenStepTime = sc.scalar(d, "settle.stiffenStepTime");
 }
 
 void readProcessors(const Schema& sc, const Dictionary& d, std::string& grid) {

@@ -23,6 +23,13 @@ struct SettleSpec {
   // full: the grains settle under g; buoyant (mixtures): under g (1 - rho_f / rho_s), the weight
   // they keep once saturated, so that adding the liquid does not unload their contacts.
   std::string gravity = "full";
+  // youngModulusFactor the sample settles at before it is stiffened to demDict youngModulusFactor
+  // (a stiff settle costs T_R^-1 steps); 0: it settles at youngModulusFactor.
+  double stiffenFrom = 0;
+  // The moduli rise geometrically in stiffenSteps steps, each held stiffenStepTime s: a step's
+  // sudden stiffening releases about (ratio - 1) times the elastic energy of the contacts.
+  long stiffenSteps = 10;
+  double stiffenStepTime = 0.01;
 };
 
 struct DemSpec {

@@ -61,6 +61,9 @@ double DemDriver::simTime() const { return (lig_->step() - step0_) * dt_; }
 
 SettleReport DemDriver::settle() {
   const Scene& s = scene_;
+  // The scene the grains settle in: s, or s softened to settle.stiffenFrom with its own step.
+  const Scene st = s.settlingScene();
+  const double dtSettle = st.timeStepUsed();
   const std::string fingerprint = fingerprintOf(settleInputs(s));
   std::ostringstream note;  // find() reports an ignored checkpoint; rank 0 prints it
   const std::optional<SettleCheckpoint> from = SettleCheckpoint::find(s.caseDir, fingerprint, note);
@@ -69,8 +72,8 @@ SettleReport DemDriver::settle() {
   double top = 0;
   if (from) {
     // The box, atoms and gate as the checkpoint left them; the settling materials below.
-    lig_->commands(
-        resumeSetupCommands(s, (fs::path(s.caseDir) / from->restartFile).string(), dt_, true));
+    lig_->commands(resumeSetupCommands(st, (fs::path(s.caseDir) / from->restartFile).string(),
+                                       dtSettle, true));
     t = from->time;
     settleSlot_ = from->restartFile == SettleCheckpoint::slotFile(0) ? 1 : 0;
     top = s.sample.height;  // only sets the free-fall time, which has passed
@@ -89,16 +92,19 @@ SettleReport DemDriver::settle() {
            << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
            << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
            << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
-    lig_->commands(sceneSetupCommands(s, dataFile, dt_));
+    if (rank_ == 0 && s.stiffensSettled())
+      out_ << "[dem] settling at E = " << st.youngModulusUsed() << " Pa (settle.stiffenFrom "
+           << s.settle.stiffenFrom << "), dt = " << dtSettle << " s, then stiffened" << std::endl;
+    lig_->commands(sceneSetupCommands(st, dataFile, dtSettle));
   }
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
   // off while settling: a constant rolling torque chatters at rest and keeps the sample from
   // settling.
-  lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
+  lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, s.settle.friction, 0.0));
   lig_->commands(settleGravityCommands(s));
 
   const double m = s.particles.mass(), d = s.particles.diameter;
-  const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dt_));
+  const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dtSettle));
   const double tFall = std::sqrt(2.0 * top / kG);
   const double every = s.settle.checkpointInterval;
   double nextCheckpoint = every > 0 ? (std::floor(t / every + 1e-9) + 1) * every : 0;
@@ -111,7 +117,7 @@ SettleReport DemDriver::settle() {
          << std::endl;
   while (t < s.settle.maxTime) {
     lig_->run(nChunk);
-    t += nChunk * dt_;
+    t += nChunk * dtSettle;
     const Energies e = energies(lig_->particles(), kG, comm_);
     if (!std::isfinite(e.kinetic()))
       throw std::runtime_error("NaN in particle kinetic energy during settling at t = " + fmt(t) +
@@ -122,10 +128,32 @@ SettleReport DemDriver::settle() {
       converged = true;
       break;
     }
-    if (every > 0 && t >= nextCheckpoint - 0.5 * dt_) {
+    if (every > 0 && t >= nextCheckpoint - 0.5 * dtSettle) {
       writeSettleCheckpoint(t, fingerprint);
       nextCheckpoint += every;
     }
+  }
+  if (s.stiffensSettled()) {
+    // Up to the scene's moduli and step in geometric steps at the settling friction: each sheds
+    // part of the soft overlaps (SettleSpec::stiffenSteps).
+    double tStiff = 0;
+    Energies e;
+    for (long k = 1; k <= s.settle.stiffenSteps; ++k) {
+      const Scene step = s.stiffeningScene(k);
+      const double dtStep = step.timeStepUsed();  // the last step is the scene's: dt_
+      lig_->commands(stiffenCommands(step, dtStep));
+      lig_->invalidateSetup();
+      const long n = std::max(1L, std::lround(s.settle.stiffenStepTime / dtStep));
+      lig_->run(n);
+      tStiff += n * dtStep;
+      e = energies(lig_->particles(), kG, comm_);
+    }
+    t += tStiff;
+    if (rank_ == 0)
+      out_ << "[dem] stiffened to E = " << s.youngModulusUsed() << " Pa in "
+           << s.settle.stiffenSteps << " steps, " << fmt(tStiff, 4)
+           << " s: KE/(N m g d) = " << fmt(meanKineticPerParticle(e) / (m * kG * d), 3)
+           << std::endl;
   }
   // Back to the real friction, and a short relaxation so the contacts carry it.
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,

@@ -69,6 +69,17 @@ std::vector<std::string> contactCommands(const ParticleMaterial& p, double young
   return c;
 }
 
+std::vector<std::string> stiffenCommands(const Scene& s, double timeStep) {
+  std::vector<std::string> c;
+  const ParticleMaterial& p = s.particles;
+  if (std::max(s.youngModulusUsed(), s.wallYoungModulusUsed()) > 1e9)
+    c.push_back("hard_particles yes");
+  for (auto& m : materialCommands(p, s.dem.youngModulusFactor, s.settle.friction, 0.0))
+    c.push_back(m);
+  c.push_back("timestep " + fmt(timeStep));
+  return c;
+}
+
 Box channelBox(const Scene& s, double fillTop) {
   const double d = s.particles.diameter;
   Box b;

@@ -36,6 +36,10 @@ std::vector<std::string> contactCommands(const ParticleMaterial& p, double young
 std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
                         const std::string& plane, double position);
 
+// Raises a sample settled softer (demDict settle.stiffenFrom) to the scene's moduli and DEM step,
+// keeping the settling friction and no rolling resistance; takes effect at the next run.
+std::vector<std::string> stiffenCommands(const Scene& s, double timeStep);
+
 // Simulation box (fluid-free dam-break channel) bounds: x, y, z lo/hi.
 struct Box {
   double xlo, xhi, ylo, yhi, zlo, zhi;

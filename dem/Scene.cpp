@@ -60,7 +60,32 @@ Scene Scene::read(const std::string& caseDir) {
                                shortNum(s.youngModulusUsed()) + " Pa; allowed range (0, " +
                                shortNum(limit) + "]");
   }
+  if (s.stiffensSettled() && s.settle.stiffenFrom >= s.dem.youngModulusFactor)
+    dem.subDict("settle").fail("stiffenFrom", "value " + shortNum(s.settle.stiffenFrom) +
+                                                  " must be below youngModulusFactor (" +
+                                                  shortNum(s.dem.youngModulusFactor) +
+                                                  "): the sample is stiffened to it; "
+                                                  "allowed range 0 (no stiffening) or (0, " +
+                                                  shortNum(s.dem.youngModulusFactor) + ")");
   return s;
+}
+
+Scene Scene::settlingScene() const {
+  if (!stiffensSettled()) return *this;
+  Scene soft = *this;
+  soft.dem.youngModulusFactor = settle.stiffenFrom;
+  soft.dem.timeStep = 0;
+  return soft;
+}
+
+Scene Scene::stiffeningScene(long k) const {
+  if (k >= settle.stiffenSteps) return *this;
+  Scene step = *this;
+  const double x = static_cast<double>(k) / static_cast<double>(settle.stiffenSteps);
+  step.dem.youngModulusFactor =
+      settle.stiffenFrom * std::pow(dem.youngModulusFactor / settle.stiffenFrom, x);
+  step.dem.timeStep = 0;
+  return step;
 }
 
 double Scene::rayleighTime() const {

@@ -48,6 +48,15 @@ struct Scene {
   double stableTimeStepLimit() const;
   double timeStepUsed() const;  // validated: throws InputError above the limit
   long particleCount() const;   // N = phi L H W / Vp
+
+  // demDict settle.stiffenFrom > 0: the sample settles softer, then is stiffened.
+  bool stiffensSettled() const { return settle.stiffenFrom > 0; }
+  // The scene the sample settles in: this one, or (stiffening) the same with youngModulusFactor
+  // settle.stiffenFrom and its auto step (the scene's own timeStep is for the full moduli).
+  Scene settlingScene() const;
+  // Step k = 1 .. settle.stiffenSteps of the stiffening: youngModulusFactor stiffenFrom r^k with
+  // r = (factor / stiffenFrom)^(1/steps), at its auto step; the last is this scene itself.
+  Scene stiffeningScene(long k) const;
 };
 
 }  // namespace mixflow::dem

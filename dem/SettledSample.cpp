@@ -37,22 +37,32 @@ std::string readText(const fs::path& path) {
 std::string settleInputs(const Scene& s) {
   const Fill fill = makeLooseFill(s);
   const std::string data = dataFileText(fill, s.particles, channelBox(s, fill.top));
-  const double dt = s.timeStepUsed();
+  // A stiffened sample settles in the softer scene (Scene::settlingScene), then is stiffened.
+  const Scene st = s.settlingScene();
+  const double dt = st.timeStepUsed();
   std::ostringstream out;
   out.precision(17);
   out << kSettleVersion << '\n'
       << kDataFileName << ": " << fill.centres.size() << " particles, fnv1a " << fingerprintOf(data)
       << '\n';
-  addLines(out, sceneSetupCommands(s, kDataFileName, dt));
+  addLines(out, sceneSetupCommands(st, kDataFileName, dt));
   out << "# settling materials\n";
-  addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.settle.friction, 0.0));
-  addLines(out, settleGravityCommands(s));  // nothing for full gravity: older samples still match
+  addLines(out, materialCommands(st.particles, st.dem.youngModulusFactor, st.settle.friction, 0.0));
+  addLines(out, settleGravityCommands(st));  // nothing for full gravity: older samples still match
   out << "# settling: check every " << kSettleCheckInterval << " s, at most " << s.settle.maxTime
       << " s, until the mean kinetic energy < " << s.settle.kineticTolerance << " m g d\n";
   // A checkpoint's restart write re-runs LIGGGHTS' setup, which changes the trajectory at
   // round-off: samples settled with and without checkpoints are not the same sample.
   if (s.settle.checkpointInterval > 0)
     out << "# checkpoints every " << s.settle.checkpointInterval << " s\n";
+  if (s.stiffensSettled()) {
+    out << "# stiffened from youngModulusFactor " << s.settle.stiffenFrom << " in "
+        << s.settle.stiffenSteps << " steps of " << s.settle.stiffenStepTime << " s\n";
+    for (long k = 1; k <= s.settle.stiffenSteps; ++k) {
+      const Scene step = s.stiffeningScene(k);
+      addLines(out, stiffenCommands(step, step.timeStepUsed()));
+    }
+  }
   out << "# then the real materials, relaxed for " << s.settle.relaxTime << " s\n";
   addLines(out, materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
                                  s.particles.rollingFriction));

@@ -5,8 +5,9 @@
 // liquid, the coupling, the mesh or the exchange interval keeps the same grains: reusing the
 // sample saves that hour and takes the packing's run-to-run noise out of the comparison. The
 // inputs of a settling are the loose fill (dem/initial.data), the LIGGGHTS set-up (contacts,
-// walls, gate, box, time step), the settling and final materials and the settling schedule; they
-// are written as text to dem/settled.inputs, and their hash is settled.state's `fingerprint`.
+// walls, gate, box, time step), the settling and final materials, the settling schedule and a
+// stiffening's steps (settle.stiffenFrom); they are written as text to dem/settled.inputs, and
+// their hash is settled.state's `fingerprint`.
 // The rank count is not an input: a restart file reads on any number of ranks, and ranks change
 // a settling only by round-off.
 #pragma once
