@@ -37,7 +37,7 @@ from tier_trade import observables  # noqa: E402
 
 TIMES = (0.25, 0.5, 1.0, 1.5)
 SCENES = {"P": "P", "W+P": "WP"}  # scene -> tag suffix of its run directories
-QUICK = "quick"  # the value label of the quick tier's own setting
+QUICK = "quick"  # the value label of the quick tier's run (knob None in PLAN)
 
 # knob -> scenes, values (label -> --set entries; QUICK: none) and the reference (the finest
 # setting). Labels are the knob's value as written in the case files.
@@ -72,6 +72,12 @@ KNOBS = {
     "dimensions": {
         "entry": "cfdDict dimensions", "scenes": ["W+P"], "quick": "2",
         "values": {"3": ["cfdDict.dimensions=3"]}, "reference": "3"},
+    # The noise floor: the same run again, and another loose fill (its jitter's seed) settled
+    # into another packing of the same column.
+    "repeat": {
+        "entry": "none (again), demDict settle.seed (quick: 12345)", "scenes": ["P", "W+P"],
+        "quick": "quick", "values": {"again": [], "seed 54321": ["demDict.settle.seed=54321"]},
+        "reference": "quick"},
 }
 # Runs in order of priority (cheap and informative first); (knob, value, scene). The quick runs
 # come first: they size the rest.
@@ -81,6 +87,8 @@ PLAN = [(None, QUICK, "P"), (None, QUICK, "W+P"),
         ("exchangeEvery", "25", "W+P"), ("exchangeEvery", "5", "W+P"),
         ("cellSize", "0.1", "W+P"), ("cellSize", "0.05", "W+P"),
         ("voidFractionModel", "centre", "W+P"), ("youngModulusFactor", "1e-3", "P"),
+        ("repeat", "again", "P"), ("repeat", "again", "W+P"),
+        ("repeat", "seed 54321", "P"), ("repeat", "seed 54321", "W+P"),
         ("rayleighFraction", "0.05", "W+P"), ("width", "0.144 periodic", "W+P"),
         ("dimensions", "3", "W+P"), ("youngModulusFactor", "1e-3", "W+P"),
         ("width", "0.6 walls", "P")]
@@ -330,10 +338,16 @@ def markdown(res):
     return "\n".join(lines) + "\n"
 
 
+def size(c, k):
+    """|change| as plotted: relative, but in H for the back-wall height."""
+    return abs(c["abs"] if "back_wall" in k or c["rel"] is None else c["rel"])
+
+
 def figure(res, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter
     names = [key(tk, n) for tk, n in MAIN]
     fig, axes = plt.subplots(3, 3, figsize=(13, 11))
     marks = {"P": "o", "W+P": "s"}
@@ -341,20 +355,24 @@ def figure(res, path):
     for ax, k in zip(axes.flat, names):
         for knob, kd in res["knobs"].items():
             for sc in SCENES:
-                pts = [(r["cost_ratio"], abs(r["change"][k]["rel"] if "back_wall" not in k and
-                                            r["change"][k]["rel"] is not None
-                                            else r["change"][k]["abs"]), v)
+                pts = [(r["cost_ratio"], max(size(r["change"][k], k), 1e-4), v)
                        for v, r in kd.get(sc, {}).items()
                        if r and r["status"] == "done" and r.get("cost_ratio")
                        and k in r.get("change", {}) and v != res["reference"][sc][knob]]
                 if not pts:
                     continue
-                ax.plot([p[0] for p in pts], [max(p[1], 1e-4) for p in pts], marks[sc],
+                if knob == "repeat":  # the noise floor: a horizontal line per run
+                    for _, y, v in pts:
+                        ax.axhline(y, color="grey", ls="--" if sc == "P" else ":", lw=1,
+                                   label=f"{sc} {v} (noise floor)")
+                    continue
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], marks[sc],
                         color=colours[knob], label=f"{knob} {sc}")
                 for x, y, v in pts:
-                    ax.annotate(v, (x, max(y, 1e-4)), fontsize=7)
+                    ax.annotate(v, (x, y), fontsize=7)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_title(k, fontsize=9)
         ax.set_xlabel("CPU cost / reference's")
         ax.set_ylabel("|change| (relative; back wall: H)")
@@ -368,7 +386,7 @@ def figure(res, path):
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8)
     fig.suptitle("Each knob alone around the quick tier: change against the knob's finest "
                  "run vs cost (results/trade)")
-    fig.tight_layout(rect=(0, 0.07, 1, 0.96))
+    fig.tight_layout(rect=(0, 0.08, 1, 0.96))
     fig.savefig(path, dpi=110)
 
 
