@@ -163,6 +163,9 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   b.lambdaW = readDrift(dr, "lambdaW", b.solidFraction);
   b.lambdaP = readDrift(dr, "lambdaP", b.solidFraction);
   b.driftSource = sc.text(dr, "drifts.source");
+  // Drifts set by hand without a source are named as such, not as the default.
+  if (!dr.has("source") && (dr.has("lambdaU") || dr.has("lambdaW") || dr.has("lambdaP")))
+    b.driftSource = file.string() + " drifts";
   b.driftFields = sc.flag(dr, "drifts.fields");
   if (b.driftFields) {
     // The values are range-checked cell by cell by mixflowBulkFoam, which has the mesh; here the

@@ -78,8 +78,11 @@ def check_twins(exe, case, check):
     for name in sorted(from_bin.keys() & from_vtk.keys()):
         a, b = np.asarray(from_bin[name]), np.asarray(from_vtk[name])
         if name.endswith("particle_samples"):
+            # A grain centre within the VTK's rounding of a bin edge changes bin: at most 2 per
+            # bin. A region's count is a sum over its bins (their flips add up), so regions are
+            # held to the total's 1 % below, not to the per-bin 2.
             diff = np.abs(a - b)
-            if diff.max(initial=0) > 2:
+            if diff.max(initial=0) > 2 and not name.startswith("regions/"):
                 unequal.append(name)
             moved, total = moved + diff.sum(), total + np.abs(a).sum()
         elif a.dtype.kind != "f":
@@ -91,7 +94,7 @@ def check_twins(exe, case, check):
             d = np.nanmax(np.abs(a - b)) / np.nanmax(np.abs(a))
             if d > worst:
                 worst, where = d, name
-    check(not unequal, f"masks, window counts, NaN places equal; sample counts within 2 a bin "
+    check(not unequal, f"masks, window counts, NaN places equal; bin sample counts within 2 a bin "
           f"(differing: {unequal or 'none'})")
     check(moved <= 0.01 * total, f"particle-sample counts moved by {moved:g} of {total:g} "
           f"(tolerance 1 %)")
