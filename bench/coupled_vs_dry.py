@@ -144,6 +144,9 @@ def main():
                          "(1 lets HB&P's column flow)")
     ap.add_argument("--dem-step", type=float,
                     help="demDict timeStep in s (default: the case's, auto); the paper's is 5e-7")
+    ap.add_argument("--stiffen-from", type=float,
+                    help="demDict settle.stiffenFrom: settle at this youngModulusFactor, then "
+                    "stiffen (default: the case's, 0 = settle at youngModulusFactor)")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="mixflow-bench-cpl-")
     env_path = a.bin + os.pathsep + os.environ["PATH"]
@@ -174,6 +177,8 @@ def main():
                          ("youngModulusFactor", a.young_modulus_factor), ("timeStep", a.dem_step)):
         if value:
             set_entry(dem_dict, entry, repr(value))
+    if a.stiffen_from:
+        edit(dem_dict, {"settle": {"stiffenFrom": repr(a.stiffen_from)}})
     props = foamdict.read_dict(cp)
     everies = [int(n) for n in a.exchange_every.split(",")] if a.exchange_every else \
         [int(props["exchangeEvery"])]

@@ -114,6 +114,16 @@ double Scene::timeStepUsed() const {
   return std::min(dem.rayleighFraction * rayleighTime(), stableTimeStepLimit());
 }
 
+std::string Scene::autoStepWarning() const {
+  const double asked = dem.rayleighFraction * rayleighTime();
+  const double used = timeStepUsed();
+  if (dem.timeStep > 0 || asked <= used * (1 + 1e-9)) return "";
+  return caseDir + "/system/demDict: rayleighFraction " + shortNum(dem.rayleighFraction) +
+         " asks for dt = " + shortNum(asked) + " s, above the stability limit " + shortNum(used) +
+         " s (maxRayleighFraction, maxHertzFraction): the step is the limit, " +
+         shortNum(used / rayleighTime()) + " T_R";
+}
+
 long Scene::particleCount() const {
   const double v = sample.length * sample.height * sample.width * sample.solidFraction;
   return std::lround(v / particles.volume());

@@ -46,8 +46,11 @@ struct Scene {
   double maxImpactSpeed() const;  // sqrt(2 g H): free fall over the sample height
   double hertzTimeMin() const;    // shortest elastic Hertz contact (particle-particle or -wall)
   double stableTimeStepLimit() const;
-  double timeStepUsed() const;  // validated: throws InputError above the limit
-  long particleCount() const;   // N = phi L H W / Vp
+  double timeStepUsed() const;
+  // Empty, or a warning that the auto step rayleighFraction T_R asks for is above the
+  // stability limit (the step then runs at the limit).
+  std::string autoStepWarning() const;  // validated: throws InputError above the limit
+  long particleCount() const;           // N = phi L H W / Vp
 
   // demDict settle.stiffenFrom > 0: the sample settles softer, then is stiffened.
   bool stiffensSettled() const { return settle.stiffenFrom > 0; }

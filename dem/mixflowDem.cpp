@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
                 << " particles, time step " << scene.timeStepUsed() << " s (stability limit "
                 << scene.stableTimeStepLimit() << " s, Rayleigh time " << scene.rayleighTime()
                 << " s)" << std::endl;
+    if (rank == 0 && !scene.autoStepWarning().empty())
+      std::cout << "[mixflowDem] warning: " << scene.autoStepWarning() << std::endl;
     if (!reuseDir.empty() && !settleOnly)
       throw InputError("mixflowDem: option -reuse " + reuseDir + " needs -settleOnly");
     if (!checkOnly && settleOnly && !reuseDir.empty()) {

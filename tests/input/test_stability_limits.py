@@ -13,6 +13,8 @@ range, or warned with the limit.
     s = 2 with the largest exchangeEvery that passes; that value passes and one more is refused;
     with dragRelaxationLimit 0.5 the same interval is warned (the drag is clamped); the implicit
     drag passes without a drag warning.
+  - an auto step asked above the limit (rayleighFraction 0.3 at E x 1e-3) runs at the limit and
+    warns naming demDict, the entry and the limit in T_R;
 Nothing is simulated: seconds in all.
 
 usage: test_stability_limits.py REPO_ROOT MIXFLOWDEM MIXFLOWPREPARE WORKDIR"""
@@ -60,6 +62,14 @@ expect("maxHertzFraction 0.25 (the largest allowed)", dem_exe,
 expect("maxHertzFraction 0.26", dem_exe,
        case_with("P-quick", "hertz_outside", [soft, add_entry("maxHertzFraction 0.26;")]), 2,
        [DEM, "maxHertzFraction", "0.26", "(0, 0.25]"])
+
+# DEM: an auto step asked above the limit runs at the limit and says so; the cases' 0.1 does not.
+expect("rayleighFraction 0.3 (above the limit 0.2 T_R)", dem_exe,
+       case_with("P-quick", "auto_above",
+                 [(DEM, r"^rayleighFraction\s+[^;]+;", "rayleighFraction 0.3;")]), 0,
+       ["warning:", DEM, "rayleighFraction 0.3", "above the stability limit", "0.2 T_R"])
+expect("rayleighFraction 0.1 (inside)", dem_exe, case_with("P-quick", "auto_inside", []), 0, [],
+       absent=["rayleighFraction 0.1 asks"])
 
 # DEM: an explicit timeStep on both sides of the limit the check prints.
 for label, edits in (("E x 1e-3, 0.2 T_R binds", []),
