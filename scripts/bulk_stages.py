@@ -17,9 +17,10 @@ B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
 scripts/mixture_lambdas.py) and run again (`./Allrun`); stage C: stage A's case with the drift
 fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
 docs/calibration.md "Stage C"); stage C_t: the same with the drift fields of every extraction
-window, lambda(x, y, t), linear in time (`--fields --per-window --field-mean M`). Against the reference's granular front at the end (its
-postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
-and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
+window, lambda(x, y, t), linear in time (`--fields --per-window --field-mean M`). Against the
+reference's granular front at the end (its postProcessing/dem/timeSeries.csv): the bulk front
+(postProcessing/liquid front_bed_m), its error, and the bulk solver's CPU time
+(log.mixflowBulkFoam). Writes OUT.
 """
 
 import argparse
