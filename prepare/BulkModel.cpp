@@ -1,6 +1,8 @@
 #include "BulkModel.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -39,6 +41,16 @@ Schema makeSchema() {
                       "take λ_u, λ_w, λ_p cell by cell from the volScalarFields constant/lambdaU, "
                       "lambdaW, lambdaP (`calibrate_drifts.py --fields`; each cell held to the "
                       "constants' range); off: the constants"),
+          switchParam("drifts.timeVarying", b.driftTimeVarying,
+                      "with `fields on`: fields that change in time, one set per extraction "
+                      "window, constant/drifts/<t>/lambdaU, lambdaW, lambdaP (t the window's "
+                      "centre in s; `calibrate_drifts.py --fields --per-window`; every window's "
+                      "cells held to the constants' range), taken at the solver's time as "
+                      "`interpolation` says; off: the fixed fields"),
+          wordParam("drifts.interpolation", b.driftInterpolation, {"linear", "nearest"},
+                    "with `timeVarying on`: linear in time between the two windows around t, or "
+                    "the fields of the window whose centre is nearest t; before the first and "
+                    "after the last window their fields hold"),
           textParam("drifts.source", b.driftSource,
                     "what set the drifts (scripts/calibrate_drifts.py records the case and its "
                     "file's sha256)"),
@@ -103,6 +115,62 @@ double readDrift(const Dictionary& d, const std::string& key, double alphaS) {
   return d.scalarOr(key, p.number,
                     Range::closed(bulk::driftLowerBound(alphaS, p.range.lo), p.range.hi));
 }
+
+namespace fs = std::filesystem;
+
+// The drift fields lambdaU, lambdaW, lambdaP of DIR: their cells' distinct (lambdaU, lambdaW,
+// lambdaP) triples go into DISTINCT, so that the time-step bound sees every cell; every file
+// must hold CELLS cells (set by the first nonuniform file, -1 before). The values are
+// range-checked cell by cell by mixflowBulkFoam, which has the mesh; here a missing file is
+// refused at ENTRY of the drifts block, with MISSING saying what writes it.
+void addFieldDrifts(const fs::path& dir, const Dictionary& dr, const std::string& entry,
+                    const std::string& missing, long& cells,
+                    std::set<std::array<double, 3>>& distinct) {
+  std::vector<std::vector<double>> values;
+  for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
+    const fs::path field = dir / f;
+    if (!fs::exists(field))
+      dr.fail(entry, "on, but there is no " + field.string() + " (" + missing + ")");
+    long n = -1;
+    values.push_back(readInternalField(field.string(), 1, n));
+    if (n >= 0 && cells >= 0 && n != cells)
+      throw InputError(field.string() + ": internalField has " + std::to_string(n) +
+                       " cells, the other drift fields " + std::to_string(cells));
+    if (n >= 0) cells = n;
+  }
+  const auto at = [](const std::vector<double>& v, long i) { return v.size() == 1 ? v[0] : v[i]; };
+  for (long i = 0; i < std::max(cells, 1L); ++i)
+    distinct.insert({at(values[0], i), at(values[1], i), at(values[2], i)});
+}
+
+// The windows of time-varying drift fields: the subdirectories of DIR named by a number, as
+// OpenFOAM names time directories (mixflowBulkFoam lists them so), ascending by time.
+std::vector<std::pair<double, std::string>> driftWindows(const fs::path& dir,
+                                                         const Dictionary& dr) {
+  std::vector<std::pair<double, std::string>> windows;
+  if (fs::is_directory(dir)) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      double t = 0;
+      const auto r = std::from_chars(name.data(), name.data() + name.size(), t);
+      if (e.is_directory() && r.ec == std::errc() && r.ptr == name.data() + name.size() &&
+          std::isfinite(t))
+        windows.emplace_back(t, name);
+    }
+  }
+  if (windows.empty())
+    dr.fail("timeVarying", "on, but " + dir.string() +
+                               " holds no window (a directory named by its time, e.g. 0.05/, "
+                               "with lambdaU, lambdaW, lambdaP; scripts/calibrate_drifts.py "
+                               "--fields --per-window writes them)");
+  std::sort(windows.begin(), windows.end());
+  for (size_t i = 1; i < windows.size(); ++i)
+    if (windows[i].first == windows[i - 1].first)
+      dr.fail("timeVarying", dir.string() +
+                                 " has two windows at t = " + docNumber(windows[i].first) + ": " +
+                                 windows[i - 1].second + "/ and " + windows[i].second + "/");
+  return windows;
+}
 }  // namespace
 
 const Schema& BulkModel::schema() {
@@ -147,7 +215,6 @@ double BulkModel::maxViscosity(double height, double fluidDensity, double nuFlui
 
 BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, double solidDensity,
                         double fluidDensity, double grainDiameter) {
-  namespace fs = std::filesystem;
   const fs::path file = fs::path(caseDir) / "constant/bulkProperties";
   const Dictionary d =
       fs::exists(file) ? Dictionary::readFile(file.string()) : Dictionary::parse("", file.string());
@@ -167,31 +234,34 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   if (!dr.has("source") && (dr.has("lambdaU") || dr.has("lambdaW") || dr.has("lambdaP")))
     b.driftSource = file.string() + " drifts";
   b.driftFields = sc.flag(dr, "drifts.fields");
+  b.driftTimeVarying = sc.flag(dr, "drifts.timeVarying");
+  b.driftInterpolation = sc.word(dr, "drifts.interpolation");
+  if (b.driftTimeVarying && !b.driftFields)
+    dr.fail("timeVarying",
+            "on needs fields on (the windows replace the fixed fields); allowed: "
+            "off without fields");
+  if (dr.has("interpolation") && !b.driftTimeVarying)
+    dr.fail("interpolation", "applies to time-varying drift fields only (drifts.timeVarying on)");
   if (b.driftFields) {
-    // The values are range-checked cell by cell by mixflowBulkFoam, which has the mesh; here the
-    // files must be there (a case without them fails before anything is written) and their
-    // values feed the time-step bound.
-    std::vector<std::vector<double>> values;
-    long cells = -1;
-    for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
-      const fs::path field = fs::path(caseDir) / "constant" / f;
-      if (!fs::exists(field))
-        dr.fail("fields", "on, but there is no " + field.string() +
-                              " (a volScalarField; scripts/calibrate_drifts.py --fields writes "
-                              "lambdaU, lambdaW and lambdaP)");
-      long n = -1;
-      values.push_back(readInternalField(field.string(), 1, n));
-      if (n >= 0 && cells >= 0 && n != cells)
-        throw InputError(field.string() + ": internalField has " + std::to_string(n) +
-                         " cells, the other drift fields " + std::to_string(cells));
-      if (n >= 0) cells = n;
-    }
+    // The files must be there (a case without them fails before anything is written) and the
+    // values of every window feed the time-step bound.
     std::set<std::array<double, 3>> distinct;
-    const auto at = [](const std::vector<double>& v, long i) {
-      return v.size() == 1 ? v[0] : v[i];
-    };
-    for (long i = 0; i < std::max(cells, 1L); ++i)
-      distinct.insert({at(values[0], i), at(values[1], i), at(values[2], i)});
+    long cells = -1;
+    const fs::path constant = fs::path(caseDir) / "constant";
+    if (b.driftTimeVarying) {
+      for (const auto& [t, name] : driftWindows(constant / "drifts", dr)) {
+        addFieldDrifts(constant / "drifts" / name, dr, "timeVarying",
+                       "scripts/calibrate_drifts.py --fields --per-window writes lambdaU, "
+                       "lambdaW and lambdaP in every window",
+                       cells, distinct);
+        b.driftWindowTimes.push_back(t);
+      }
+    } else {
+      addFieldDrifts(constant, dr, "fields",
+                     "a volScalarField; scripts/calibrate_drifts.py --fields writes lambdaU, "
+                     "lambdaW and lambdaP",
+                     cells, distinct);
+    }
     b.fieldDrifts.assign(distinct.begin(), distinct.end());
   }
 

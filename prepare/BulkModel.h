@@ -25,6 +25,12 @@ struct BulkModel {
   // (lambdaU, lambdaW, lambdaP) cell triples, so that the time-step bound sees every cell.
   bool driftFields = false;
   std::vector<std::array<double, 3>> fieldDrifts;
+  // drifts.timeVarying on (with fields): the fields change in time, one set per extraction window
+  // in constant/drifts/<t>/ (t the window's centre in s, ascending in driftWindowTimes), taken at
+  // the solver's time as driftInterpolation says; fieldDrifts then holds every window's cells.
+  bool driftTimeVarying = false;
+  std::string driftInterpolation = "linear";  // linear | nearest
+  std::vector<double> driftWindowTimes;
   // Solid rheology: coulombViscoplastic, tau_ys = cohesion + tanPhi p_s, regularised as Domnik
   // et al. (nu_s and tanPhi calibrated on the dry scene P against its DEM run,
   // docs/calibration.md); or muI (Jop et al. 2006) with the same pressure and regularisation.

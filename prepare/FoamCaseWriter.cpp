@@ -237,6 +237,17 @@ std::string solidSummary(const BulkModel& b) {
          num(b.cohesion) + " Pa, m_y " + num(b.regularisation) + " s";
 }
 
+// What the solver takes instead of the constant drifts, as the log says it ("" for none).
+std::string driftFieldsSummary(const BulkModel& b) {
+  if (!b.driftFields) return "";
+  if (!b.driftTimeVarying)
+    return " (the solver takes the fields constant/lambdaU, lambdaW, lambdaP instead)";
+  const std::vector<double>& t = b.driftWindowTimes;
+  return " (the solver takes the fields of the " + std::to_string(t.size()) +
+         " windows constant/drifts/<t>/ instead, t " + num(t.front()) + " to " + num(t.back()) +
+         " s, " + b.driftInterpolation + " in time)";
+}
+
 // The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
 // (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
 std::string bulkMixtureCoeffs(const LiquidCase& c) {
@@ -275,6 +286,9 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
   if (b.driftFields)
     s << "        driftFields         on;   // constant/lambdaU, lambdaW, lambdaP\n"
       << "        yieldPressure       " << b.yieldPressure << ";   // kappa_y per cell\n";
+  if (b.driftTimeVarying)
+    s << "        driftTimeVarying    on;   // instead the windows constant/drifts/<t>/\n"
+      << "        driftInterpolation  " << b.driftInterpolation << ";\n";
   s << "    }\n";
   return s.str();
 }
@@ -414,11 +428,8 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
     os << "[mixflowPrepare] bulk model (mixflowBulkFoam): alpha_s " << num(b.solidFraction)
        << ", rho* " << num(b.mixtureDensity) << " kg/m3, drifts (" << num(b.lambdaU) << ", "
        << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource
-       << (b.driftFields
-               ? " (the solver takes the fields constant/lambdaU, lambdaW, lambdaP instead)"
-               : "")
-       << "; solid " << solidSummary(b) << " (" << b.yieldPressure << "); viscosity at rest up to "
-       << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
+       << driftFieldsSummary(b) << "; solid " << solidSummary(b) << " (" << b.yieldPressure
+       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
        << (b.basalLaw == "coulomb" ? "Coulomb sliding, tanDelta " + num(b.tanDelta) : b.basalLaw)
        << "\n";
   }

@@ -134,8 +134,9 @@ def main():
         out["scenes"][name] = rec
         out["front_error"][name] = rec["front_error"]
         st = stages["scenes"].get(scene, {})
-        out["front_error_by_stage"][name] = {
-            k: st[k].get("front_error") for k in ("A0", "A", "B", "B_median", "C") if k in st}
+        out["front_error_by_stage"][name] = {k: st[k].get("front_error")
+                                             for k in ("A0", "A", "B", "B_median", "C", "C_t")
+                                             if k in st}
         rows += [{"scene": name, **r} for r in rec["fronts"]]
     best = solid["best"]
     p_times = solid["times_s"]

@@ -16,9 +16,11 @@ REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B)
 B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
 scripts/mixture_lambdas.py) and run again (`./Allrun`); stage C: stage A's case with the drift
 fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
-docs/calibration.md "Stage C"). Against the reference's granular front at the end (its
-postProcessing/dem/timeSeries.csv): the bulk front (postProcessing/liquid front_bed_m), its error,
-and the bulk solver's CPU time (log.mixflowBulkFoam). Writes OUT.
+docs/calibration.md "Stage C"); stage C_t: the same with the drift fields of every extraction
+window, lambda(x, y, t), linear in time (`--fields --per-window --field-mean M`). Against the
+reference's granular front at the end (its postProcessing/dem/timeSeries.csv): the bulk front
+(postProcessing/liquid front_bed_m), its error, and the bulk solver's CPU time
+(log.mixflowBulkFoam). Writes OUT.
 """
 
 import argparse
@@ -96,8 +98,8 @@ def main():
                     help="calibrate_drifts.py --estimator of stage B, one run each (wls: key B, "
                     "median: key B_median)")
     ap.add_argument("--field-mean", default="wls",
-                    help="stage C: calibrate_drifts.py --field-mean (wls or ratio; ratio lets W&P's "
-                    "lambda_w reach the range limit and the run diverge)")
+                    help="stages C and C_t: calibrate_drifts.py --field-mean (wls or ratio; ratio "
+                    "lets W&P's lambda_w reach the range limit and the run diverge)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
@@ -133,12 +135,15 @@ def main():
         out["scenes"][scene] = rec
         for est in a.estimators.split(","):
             drift_stage(rec, STAGE_B[est], ["--estimator", est], case_a, ref, ref_front, a)
-        # Stage C: the drift fields on stage A's mesh (copied along with its inputs).
-        drift_stage(rec, "C", ["--fields", "--field-mean", a.field_mean], case_a, ref, ref_front, a)
+        # Stage C: the drift fields on stage A's mesh (copied along with its inputs), fixed and
+        # per window.
+        fields = ["--fields", "--field-mean", a.field_mean]
+        drift_stage(rec, "C", fields, case_a, ref, ref_front, a)
+        drift_stage(rec, "C_t", fields + ["--per-window"], case_a, ref, ref_front, a)
         print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {stage_line(rec, 'A0')}, "
               f"A {stage_line(rec, 'A')}; stage B "
               + ", ".join(f"{est} {stage_line(rec, k)}" for est, k in STAGE_B.items() if k in rec)
-              + f"; stage C {stage_line(rec, 'C')}", flush=True)
+              + f"; stage C {stage_line(rec, 'C')}, in time {stage_line(rec, 'C_t')}", flush=True)
     outputs.write_json(a.out, out)
     print(f"wrote {a.out}")
 

@@ -6,7 +6,7 @@ constant/bulkProperties `drifts` block.
 usage: /usr/bin/python3 scripts/calibrate_drifts.py SOURCE [--target CASE] [--estimator wls|median]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
-           [--fields]
+           [--fields [--per-window]] [--field-mean wls|ratio]
 
 SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflowExtract) or an
 .h5 file. The bins used (the same for both estimators) are, in the windows inside [T0, T1]: the
@@ -23,8 +23,13 @@ the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on
 from the bin holding the cell centre, the wls slope of that bin's selected windows (--field-mean
 wls, default) or the time mean of its per-bin ratios (u_f / u_s, ...; --field-mean ratio), weighted
 by the samples' weight w (--weights); the constant estimate where the bin has no selected window or
-the cell lies outside the grid; clipped into the bulk model's range (the count is printed). Fixed
-in time: the first form of stage C.
+the cell lies outside the grid; clipped into the bulk model's range (the count is printed).
+--per-window (with --fields) writes instead one set per extraction window inside --windows,
+CASE/constant/drifts/<t>/lambdaU, lambdaW, lambdaP (t the window's centre, 6 digits), each cell
+from its bin's samples of that window alone (the constant estimate where the bin has none then),
+and `drifts { fields on; timeVarying on; }`: the bulk model takes them at its time, linear in time
+between windows (bulkProperties drifts.interpolation). The counts printed are summed over the
+windows.
 """
 
 import argparse
@@ -32,6 +37,7 @@ import hashlib
 import json
 import math
 import os
+import shutil
 import sys
 
 import h5py
@@ -104,7 +110,8 @@ def check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator
 
 def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
     """Per drift the selected (window, bin) samples: x (solid), y (fluid), w (weight) and block
-    (the spatial bin, for the bootstrap); plus the selection's description."""
+    (the spatial bin, for the bootstrap); the selection's description; the windows inside
+    WINDOWS as (index, t0, t1)."""
     f, valid, attrs = d["fields"], d["valid"], d["attrs"]
     for name in ("alpha_s", "u_s", "w_s", "u_f", "w_f", "p_s", "p_f"):
         if name not in f:
@@ -159,12 +166,13 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
         out[q] = {"x": x[m], "y": y[m], "w": wt[m], "block": block[m], "window": np.nonzero(m)[0],
                   "mask": m, "x_all": x, "y_all": y, "w_all": wt}
     used = np.unique(np.concatenate([s["window"] for s in out.values()]))
+    selected = [(int(i), float(t0[i]), float(t1[i])) for i in np.nonzero(win)[0]]
     info = {"flowing_speed_m_s": speed_min, "sample_height_m": H, "g_m_s2": G,
             "rho_s_kg_m3": rho_s, "rho_f_kg_m3": rho_f,
             "windows_used": [float(t0[used].min()), float(t1[used].max())],
             "windows_used_count": int(used.size), "windows_in_file": int(t0.size),
             "source_sample_solid_fraction": float(attrs.get("sample_solid_fraction", 0.0))}
-    return out, info
+    return out, info, selected
 
 
 def estimate(x, y, w, estimator):
@@ -207,7 +215,7 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         d = load(h5)
     except (OSError, KeyError) as e:
         raise InputError(f"{h5}: not a mixflowExtract HDF5 file ({e})") from None
-    sel, info = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights)
+    sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights)
     res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator,
            "selection": dict(info, flowing_factor=flowing_factor,
                              min_solid_fraction=min_solid_fraction, weights=weights,
@@ -229,6 +237,7 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         r["value"] = r[estimator]["value"]
         res["drifts"][q] = r
     res["_samples"] = sel  # the full (window, y, x) selection, for --fields
+    res["_windows"] = selected  # the windows inside --windows, for --per-window
     return res
 
 
@@ -272,13 +281,16 @@ def _solid_fraction(target, tree, res):
     return res["selection"]["source_sample_solid_fraction"], "the source's sample_solid_fraction"
 
 
-def bulk_properties_text(path, drifts, source, solid_fraction=None, fields=False):
+def bulk_properties_text(path, drifts, source, block, fields=False, per_window=False):
     """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; lambdaP; source; }
-    (and `fields on;` with FIELDS) set through foamdict.edit_dict: every other byte of an existing
-    file stays as it is."""
+    (and `fields on;` with FIELDS, `timeVarying on;` with PER_WINDOW) set through
+    foamdict.edit_dict: every other byte of an existing file stays as it is. BLOCK is the file's
+    drifts block: a `fields` or `timeVarying` it has that this calibration does not write is set
+    off, so that no drifts of an earlier calibration stay in use."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
-    if fields:
-        entries["fields"] = "on"
+    for key, on in (("fields", fields), ("timeVarying", per_window)):
+        if on or key in block:
+            entries[key] = "on" if on else "off"
     entries["source"] = '"' + source.replace('"', "'") + '"'
     return bulkprops.block_text(path, "drifts", entries)
 
@@ -310,8 +322,9 @@ def cell_centres(target):
                          "mixflowPrepare and blockMesh on it first)") from None
 
 
-def drift_fields(res, centres, lo, hi, how):
-    """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping."""
+def drift_fields(res, centres, lo, hi, how, window=None):
+    """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping; with WINDOW
+    (an index of the file's windows) from that window's samples alone."""
     with h5py.File(res["h5"], "r") as h:
         xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
     ix = np.searchsorted(xe, centres[:, 0], side="right") - 1
@@ -319,6 +332,10 @@ def drift_fields(res, centres, lo, hi, how):
     inside = (ix >= 0) & (ix < xe.size - 1) & (iy >= 0) & (iy < ye.size - 1)
     out = {}
     for q, s in res["_samples"].items():
+        if window is not None:
+            mask = np.zeros_like(s["mask"])
+            mask[window] = s["mask"][window]
+            s = dict(s, mask=mask)
         means = bin_means(s, how)
         v = np.full(len(centres), np.nan)
         v[inside] = means[iy[inside], ix[inside]]
@@ -336,9 +353,9 @@ def drift_fields(res, centres, lo, hi, how):
 FIELD_MEAN_TEXT = {"wls": "the wls slope of the windows", "ratio": "the weighted time mean of the ratios"}
 
 
-def field_text(name, values, source, field_mean):
+def field_text(name, values, source, field_mean, location="constant"):
     return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       "
-            f"volScalarField;\n    location    \"constant\";\n    object      {name};\n}}\n"
+            f"volScalarField;\n    location    \"{location}\";\n    object      {name};\n}}\n"
             f"// {source}\n// per cell: {FIELD_MEAN_TEXT[field_mean]} of the bin holding its centre "
             "(the constant estimate where none), clipped to the bulk model's range\n\n"
             f"dimensions      [0 0 0 0 0 0 0];\n\ninternalField   {format_scalar_list(values)}\n;\n\n"
@@ -367,10 +384,63 @@ def check_target(target):
     return tree
 
 
-def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="wls"):
+def window_name(t0, t1):
+    """The directory name of a window in constant/drifts/: its centre, as OpenFOAM names a time
+    (6 significant digits)."""
+    return f"{(t0 + t1) / 2:.6g}"
+
+
+def series_fields(res, centres, lo, hi, field_mean, source, target):
+    """--per-window: per window inside --windows the drift fields of its samples alone, as
+    (path, text) under TARGET/constant/drifts/<centre>/, and per drift their bookkeeping (counts
+    summed over the windows, each window's own under "windows")."""
+    names = [window_name(t0, t1) for _, t0, t1 in res["_windows"]]
+    if len(set(names)) != len(names):
+        raise InputError(f"{res['h5']} /windows: two windows share the centre "
+                         f"{next(n for n in names if names.count(n) > 1)} s at 6 digits "
+                         "(--per-window names each window's fields by its centre); nothing "
+                         "written")
+    files, summary = [], {}
+    for name, (i, t0, t1) in zip(names, res["_windows"]):
+        for q, f in drift_fields(res, centres, lo, hi, field_mean, window=i).items():
+            key = DRIFTS[q][0]
+            rel = os.path.join("constant", "drifts", name)
+            files.append((os.path.join(target, rel, key),
+                          field_text(key, f["values"], f"{source}, field mean {field_mean}, "
+                                     f"window {t0:g}-{t1:g} s", field_mean, rel)))
+            r = summary.setdefault(key, {"windows": [], "min": f["min"], "max": f["max"],
+                                         "file": os.path.join(target, "constant", "drifts")})
+            r["windows"].append(dict({k: v for k, v in f.items() if k != "values"}, time=name,
+                                     t0=t0, t1=t1))
+            r["min"], r["max"] = min(r["min"], f["min"]), max(r["max"], f["max"])
+    for r in summary.values():
+        for k in ("cells", "from_bins", "fallback_cells", "clipped_cells", "bins_with_value",
+                  "bins"):
+            r[k] = sum(w[k] for w in r["windows"])
+    return files, summary
+
+
+def write_series(target, files):
+    """The window directories of FILES into TARGET/constant/drifts/, replacing the earlier
+    series as a whole (through a directory renamed over it): no window of an earlier calibration
+    stays."""
+    final = os.path.join(target, "constant", "drifts")
+    staging = final + ".new"
+    shutil.rmtree(staging, ignore_errors=True)
+    for p, body in files:
+        p = os.path.join(staging, os.path.relpath(p, final))
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        bulkprops.write_text(p, body)
+    shutil.rmtree(final, ignore_errors=True)
+    os.replace(staging, final)
+
+
+def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="wls",
+                 per_window=False):
     """Checks TARGET and the drifts against the bulk model's range, then writes
     TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
-    lambdaP); returns their paths. Nothing is written when a check fails (InputError)."""
+    lambdaP; with PER_WINDOW instead one set per window, constant/drifts/<centre>/); returns
+    their paths. Nothing is written when a check fails (InputError)."""
     tree = check_target(target)
     centres = cell_centres(target) if fields else None
     path = bulkprops.path(target)
@@ -392,16 +462,21 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
     source = (f"calibrate_drifts.py: {where} sha256 {res['sha256']}, estimator "
               f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s")
     try:
-        text = bulk_properties_text(path, drifts, source, fields=fields)
+        text = bulk_properties_text(path, drifts, source, tree.get("drifts", {}), fields,
+                                    per_window)
     except DictError as e:
         raise InputError(f"{path}: {e}") from None
     json_path = json_path or path + ".calibration.json"
-    files = []
-    sel = res.get("_samples")
+    files, series = [], []
+    private = res
     res = dict(public(res), bulk_properties=path, source=source, solid_fraction=alpha,
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
-    if fields:
-        fs = drift_fields(dict(res, _samples=sel), centres, lo, DRIFT_MAX, field_mean)
+    if per_window:
+        series, res["fields"] = series_fields(private, centres, lo, DRIFT_MAX, field_mean, source,
+                                              target)
+        res["field_mean"] = field_mean
+    elif fields:
+        fs = drift_fields(private, centres, lo, DRIFT_MAX, field_mean)
         res["fields"] = {}
         res["field_mean"] = field_mean
         for q, f in fs.items():
@@ -411,9 +486,11 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
                                          field_mean)))
             res["fields"][name] = dict({k: v for k, v in f.items() if k != "values"}, file=fp)
     files += [(path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")]
+    if series:
+        write_series(target, series)
     for p, body in files:
         bulkprops.write_text(p, body)
-    return [p for p, _ in files]
+    return ([os.path.join(target, "constant", "drifts")] if series else []) + [p for p, _ in files]
 
 
 def main(argv=None):
@@ -433,6 +510,11 @@ def main(argv=None):
     ap.add_argument("--fields", action="store_true",
                     help="with --target: also the drift fields constant/lambdaU, lambdaW, lambdaP "
                     "on the target's mesh, and drifts { fields on; }")
+    ap.add_argument("--per-window", action="store_true",
+                    help="with --fields: one set of fields per extraction window inside "
+                    "--windows, constant/drifts/<centre>/lambdaU, lambdaW, lambdaP, from that "
+                    "window's samples alone, and drifts { timeVarying on; } (the bulk model "
+                    "takes them at its time, docs/bulk_model.md)")
     ap.add_argument("--field-mean", default="wls",
                     help="--fields: per bin the wls slope of its windows (wls, default: the "
                     "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge) "
@@ -441,6 +523,8 @@ def main(argv=None):
     try:
         if a.fields and not a.target:
             raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
+        if a.per_window and not a.fields:
+            raise InputError("--per-window: needs --fields (the windows' fields are drift fields)")
         if a.field_mean not in FIELD_MEAN_TEXT:
             raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(sorted(FIELD_MEAN_TEXT))}")
         if a.target:
@@ -449,12 +533,14 @@ def main(argv=None):
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
         print(table(res))
         if a.target:
-            for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean):
+            for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,
+                                  a.per_window):
                 print(f"wrote {p}")
             if a.fields:
                 with open(a.json or bulkprops.path(a.target) + ".calibration.json") as f:
                     for name, r in json.load(f)["fields"].items():
-                        print(f"{name}: {r['cells']} cells, {r['from_bins']} from their bin "
+                        each = f"{len(r['windows'])} windows, " if "windows" in r else ""
+                        print(f"{name}: {each}{r['cells']} cells, {r['from_bins']} from their bin "
                               f"({r['bins_with_value']} of {r['bins']} bins have a value), "
                               f"{r['fallback_cells']} the constant, {r['clipped_cells']} clipped "
                               f"into the allowed range; values [{r['min']:.4g}, {r['max']:.4g}]")

@@ -55,6 +55,7 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
     buoyancyReducedYield_ = coeffs_.get<word>("yieldPressure") == "buoyancyReduced";
     readDriftFields();
   } else {
+    driftSeries_.clear();
     lambdaU_.clear();
     lambdaW_.clear();
     lambdaP_.clear();
@@ -64,9 +65,9 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
 }
 
 Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDriftField(
-    const word& name) const {
+    const word& name, const fileName& local) const {
   autoPtr<volScalarField> f(
-      new volScalarField(IOobject(name, U_.time().constant(), U_.mesh(), IOobject::MUST_READ,
+      new volScalarField(IOobject(name, U_.time().constant(), local, U_.mesh(), IOobject::MUST_READ,
                                   IOobject::NO_WRITE, false),
                          U_.mesh()));
   f->correctBoundaryConditions();  // coupled patches: the face values of the cells read
@@ -98,7 +99,8 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
   reduce(vmin, minOp<scalar>());
   reduce(vmax, maxOp<scalar>());
   const label nCells = returnReduce(f->size(), sumOp<label>());
-  const fileName file = U_.time().rootPath() / U_.time().globalCaseName() / "constant" / name;
+  const fileName file =
+      U_.time().rootPath() / U_.time().globalCaseName() / "constant" / local / name;
   if (cells || faces) {
     FatalErrorInFunction << file << ": field " << name << " has " << cells << " of " << nCells
                          << " cells and " << faces << " boundary faces outside the allowed range ["
@@ -112,11 +114,14 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
 }
 
 void Foam::viscosityModels::bulkMixture::readDriftFields() {
-  lambdaU_ = readDriftField("lambdaU");
-  lambdaW_ = readDriftField("lambdaW");
-  lambdaP_ = readDriftField("lambdaP");
-  // u_s = diag(Lambda_u, Lambda_w, Lambda_u) U and u_f = diag(lambda_u, lambda_w, lambda_u) u_s
-  // with the drifts of each cell and face, once: the fields and alpha_s do not change in time.
+  if (coeffs_.lookupOrDefault<Switch>("driftTimeVarying", false)) {
+    readDriftSeries();
+  } else {
+    driftSeries_.clear();
+    lambdaU_ = readDriftField("lambdaU");
+    lambdaW_ = readDriftField("lambdaW");
+    lambdaP_ = readDriftField("lambdaP");
+  }
   auto factors = [&](const word& name) {
     return autoPtr<volVectorField>(
         new volVectorField(IOobject(name, U_.time().timeName(), U_.mesh(), IOobject::NO_READ,
@@ -125,6 +130,75 @@ void Foam::viscosityModels::bulkMixture::readDriftFields() {
   };
   solidFactors_ = factors("solidVelocityFactors");
   fluidFactors_ = factors("fluidVelocityFactors");
+  // Fixed fields: the factors once, as alpha_s does not change in time; a series: at each step.
+  driftTimeIndex_ = -1;
+  if (driftSeries_.valid())
+    syncDrifts();
+  else
+    setVelocityFactors();
+}
+
+void Foam::viscosityModels::bulkMixture::readDriftSeries() {
+  const Time& time = U_.time();
+  const fileName dir = time.path() / time.constant() / "drifts";
+  const instantList times = Time::findTimes(dir);
+  // Each rank reads its own decomposed windows (./Allrun RANKS decomposes them): the same ones.
+  const label nMin = returnReduce(times.size(), minOp<label>());
+  const label nMax = returnReduce(times.size(), maxOp<label>());
+  if (nMin == 0 || nMin != nMax) {
+    FatalErrorInFunction << dir << ": " << times.size()
+                         << " windows (directories named by their time, each with lambdaU, "
+                            "lambdaW, lambdaP), "
+                         << nMin << " to " << nMax
+                         << " over the ranks; allowed: at least 1, the same on every rank (in "
+                            "parallel ./Allrun RANKS decomposes them)"
+                         << exit(FatalError);
+  }
+  for (label i = 1; i < times.size(); ++i) {
+    if (times[i].value() == times[i - 1].value()) {
+      FatalErrorInFunction << dir << ": two windows at t = " << times[i].value() << ": "
+                           << times[i - 1].name() << " and " << times[i].name() << exit(FatalError);
+    }
+  }
+  const word how = coeffs_.get<word>("driftInterpolation");
+  if (how != "linear" && how != "nearest") {
+    FatalIOErrorInFunction(coeffs_)
+        << "driftInterpolation " << how << ": allowed linear, nearest" << exit(FatalIOError);
+  }
+  // Every window is read and range-checked here, before the first step.
+  const word names[3] = {"lambdaU", "lambdaW", "lambdaP"};
+  PtrList<volScalarField> fields(3 * times.size());
+  forAll(times, i) {
+    for (label k = 0; k < 3; ++k) {
+      fields.set(3 * i + k, readDriftField(names[k], fileName("drifts") / times[i].name()));
+    }
+  }
+  driftSeries_.reset(new bulkDriftSeries(times, std::move(fields),
+                                         how == "linear"
+                                             ? bulkDriftSeries::Interpolation::linear
+                                             : bulkDriftSeries::Interpolation::nearest));
+  // The drifts in use start as copies of the first window (its boundary conditions included).
+  auto current = [&](const label k) {
+    return autoPtr<volScalarField>(
+        new volScalarField(IOobject(names[k], time.timeName(), U_.mesh(), IOobject::NO_READ,
+                                    IOobject::NO_WRITE, false),
+                           driftSeries_->window(0, k)));
+  };
+  lambdaU_ = current(0);
+  lambdaW_ = current(1);
+  lambdaP_ = current(2);
+}
+
+void Foam::viscosityModels::bulkMixture::syncDrifts() const {
+  if (!driftSeries_.valid() || driftTimeIndex_ == U_.time().timeIndex()) return;
+  driftSeries_->set(U_.time().value(), *lambdaU_, *lambdaW_, *lambdaP_);
+  setVelocityFactors();
+  driftTimeIndex_ = U_.time().timeIndex();
+}
+
+void Foam::viscosityModels::bulkMixture::setVelocityFactors() const {
+  // u_s = diag(Lambda_u, Lambda_w, Lambda_u) U and u_f = diag(lambda_u, lambda_w, lambda_u) u_s
+  // with the drifts of each cell and face.
   auto set = [&](const mixflow::bulk::Drifts& d, vector& s, vector& f) {
     const mixflow::bulk::LambdaCoefficients c = mixflow::bulk::lambdaCoefficients(alphaS_, d);
     s = vector(c.u, c.w, c.u);
@@ -161,8 +235,24 @@ Foam::scalar Foam::viscosityModels::bulkMixture::yieldFromMixturePressure(
   return kappa / mixflow::bulk::lambdaCoefficients(alphaS_, d).p;
 }
 
+const Foam::volVectorField& Foam::viscosityModels::bulkMixture::solidVelocityFactorField() const {
+  syncDrifts();
+  return *solidFactors_;
+}
+
+const Foam::volVectorField& Foam::viscosityModels::bulkMixture::fluidVelocityFactorField() const {
+  syncDrifts();
+  return *fluidFactors_;
+}
+
+Foam::tmp<Foam::volVectorField> Foam::viscosityModels::bulkMixture::slipFactorField() const {
+  syncDrifts();
+  return *solidFactors_ - *fluidFactors_;
+}
+
 Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::pressureFactorField(
     const bool fluid) const {
+  syncDrifts();
   tmp<volScalarField> t(new volScalarField(
       IOobject(fluid ? "rhoFLambdaPByLambdaP" : "rhoSByLambdaP", U_.time().timeName(), U_.mesh(),
                IOobject::NO_READ, IOobject::NO_WRITE, false),
@@ -206,6 +296,7 @@ Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::mixturePress
 }
 
 Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::calcNu() const {
+  syncDrifts();
   const vector fs = solidVelocityFactors(), ff = fluidVelocityFactors();
   const bool fields = driftFields();
   const volScalarField srSolid(

@@ -4,8 +4,9 @@
 // u_m = alpha_s u_s + alpha_f u_f, rho* its constant density (as the paper, which has no mixture
 // density), and its viscosity the bulkMixture model (bulkMixtureViscosity.H: Coulomb-viscoplastic
 // solid, the pore liquid's rheology, the drifts lambda). The Lambda-weighted convection enters as
-// div(u_m u_m) plus the drift stress (bulkDriftStress.H). Constant solid fraction; constant drifts
-// or fixed drift fields constant/lambdaU, lambdaW, lambdaP (bulkProperties drifts { fields on; });
+// div(u_m u_m) plus the drift stress (bulkDriftStress.H). Constant solid fraction; constant drifts,
+// fixed drift fields constant/lambdaU, lambdaW, lambdaP (bulkProperties drifts { fields on; }) or
+// fields that change in time, the windows constant/drifts/<t>/ (timeVarying on; bulkDriftSeries.H);
 // the reconstructed u_s, u_f, P_s, P_f are written with the fields (writeBulkFields.H).
 // With solid fraction 0 it is mixflowFoam with the pore liquid (tests/cfd bulk.*).
 

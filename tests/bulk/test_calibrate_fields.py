@@ -3,6 +3,10 @@ written on a target mesh hold, in every cell, the weighted time mean over the se
 the ratios of the bin holding its centre (recomputed here from the extraction), the constant
 estimate where the bin has no selected window or the cell lies outside the grid, clipped into the
 bulk model's range with the count reported; bulkProperties gets `fields on;` and the source.
+--per-window: one set per window inside --windows in constant/drifts/<centre>/, every cell of every
+window equal to its bin's value recomputed from that window's samples alone (the constant, the
+clip and their counts as above, per window); bulkProperties gets `timeVarying on;`, which a later
+fixed-field calibration sets off.
 
 usage: test_calibrate_fields.py MIXFLOWEXTRACT BLOCKMESH WORKDIR"""
 import json
@@ -96,41 +100,112 @@ def expected(h5, constants, windows, how):
     return out, bins
 
 
-def run(check, work, case, h5, blockmesh, label, windows, alpha, how):
-    """calibrate_drifts.py --fields onto a fresh target; checks every cell. Returns the counts."""
-    lo = (0.01 - alpha) / (1 - alpha)  # alpha_s + lambda alpha_f >= 0.01
-    target = os.path.join(work, "bulk_target_" + label.replace(" ", "_").replace(",", ""))
-    target_case(target, blockmesh, alpha)
+def calibrate(check, case, target, label, args):
+    """calibrate_drifts.py CASE --target TARGET --fields ARGS; exits on failure. Returns the
+    command, its stdout and the JSON written."""
     cmd = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
-           "--target", target, "--fields", "--flowing-factor", str(FLOWING), "--windows", windows,
-           "--bootstrap", "50", "--field-mean", how]
+           "--target", target, "--fields", "--flowing-factor", str(FLOWING), "--bootstrap",
+           "50"] + args
     r = subprocess.run(cmd, capture_output=True, text=True)
     print(r.stdout + r.stderr)
     check(r.returncode == 0, f"{label}: calibrate_drifts.py --fields exits 0 (got {r.returncode})")
     if r.returncode != 0:
         sys.exit(1)
     with open(os.path.join(target, "constant", "bulkProperties.calibration.json")) as f:
-        j = json.load(f)
+        return cmd, r.stdout, json.load(f)
+
+
+def check_cells(check, label, key, path, want, lo):
+    """The cell values of the field PATH against WANT clipped to [LO, 1000]; returns the count
+    of cells the clip moves."""
+    got = np.array(foamcase.read_internal_field(path))
+    check(got.size == NX * NY, f"{label}: {key}: {got.size} cell values ({NX * NY} cells)")
+    clip = np.clip(want, lo, 1e3)
+    err = float(np.max(np.abs(got - clip)))
+    check(err <= 1e-12 * max(1.0, float(np.max(np.abs(clip)))),
+          f"{label}: {key}: every cell equals its recomputed value clipped to [{lo:.4g}, 1000]: "
+          f"max |diff| {err:.2e} (<= 1e-12 relative)")
+    return int(((want < lo) | (want > 1e3)).sum())
+
+
+def run_per_window(check, work, case, h5, blockmesh):
+    """--fields --per-window over windows 0-0.06 s (3 of 0.02 s) at alpha_s 0.005 (the clip's
+    range, crossed by single windows' bins): per window and drift every cell against its bin's
+    value from that window alone; then a fixed-field calibration of the same target sets
+    timeVarying off."""
+    alpha, how, label = 0.005, "wls", "per window"
+    lo = (0.01 - alpha) / (1 - alpha)
+    target = os.path.join(work, "bulk_target_per_window")
+    target_case(target, blockmesh, alpha)
+    cmd, out, j = calibrate(check, case, target, label, ["--windows", "0:0.06", "--per-window"])
+    consts = {q: j["drifts"][q]["value"] for q in cd.DRIFTS}
+    series = os.path.join(target, "constant", "drifts")
+    names = sorted(os.listdir(series), key=float)
+    check(names == ["0.01", "0.03", "0.05"], f"{label}: window directories {names} (the centres "
+          "of the 3 windows inside 0-0.06 s)")
+    clipped = empty = 0
+    for name in names:
+        t = float(name)
+        span = f"{t - 0.01:.10g}:{t + 0.01:.10g}"
+        want, empty_bins = expected(h5, consts, span, how)
+        for q, (key, *_) in cd.DRIFTS.items():
+            path = os.path.join(series, name, key)
+            n_clip = check_cells(check, f"{label} {name} s", key, path, want[q], lo)
+            fj = next(w for w in j["fields"][key]["windows"] if w["time"] == name)
+            check(fj["clipped_cells"] == n_clip and
+                  fj["fallback_cells"] == NX * NY - 32 * 8 + 4 * empty_bins[q],
+                  f"{label} {name} s: {key}: {fj['clipped_cells']} cells reported clipped "
+                  f"({n_clip} recomputed), {fj['fallback_cells']} the constant (outside the grid "
+                  f"and 4 in each of the {empty_bins[q]} bins without a sample)")
+            with open(path) as f:
+                text = f.read()
+            check(cd.sha256(h5) in text and f"window {t - 0.01:g}-{t + 0.01:g} s" in text and
+                  f'location    "constant/drifts/{name}"' in text,
+                  f"{label} {name} s: {key}: header records the sha256, the window and location")
+            clipped += n_clip
+            empty += empty_bins[q]
+    check(clipped > 0 and empty > 0, f"{label}: the clip ({clipped} cells) and the fallback "
+          f"({empty} empty bins) are exercised")
+    for key in ("lambdaU", "lambdaW", "lambdaP"):
+        r = j["fields"][key]
+        check(f"{key}: 3 windows, {r['cells']} cells" in out and r["cells"] == 3 * NX * NY,
+              f"{label}: {key}: counts summed over the windows printed ({r['cells']} cells)")
+    d = read_dict(os.path.join(target, "constant", "bulkProperties"))["drifts"]
+    check(d.get("fields") == "on" and d.get("timeVarying") == "on",
+          f"{label}: bulkProperties drifts {{ fields on; timeVarying on; }}: {d.get('fields')}, "
+          f"{d.get('timeVarying')}")
+    calibrate(check, case, target, "fixed after per window", ["--windows", "0:0.06"])
+    d = read_dict(os.path.join(target, "constant", "bulkProperties"))["drifts"]
+    check(d.get("fields") == "on" and d.get("timeVarying") == "off",
+          f"fixed fields after a per-window calibration: timeVarying {d.get('timeVarying')} "
+          "(off: the earlier windows are no longer used)")
+    r = subprocess.run(cmd[:3] + ["--target", target, "--per-window"], capture_output=True,
+                       text=True)
+    check(r.returncode == 2 and "--per-window: needs --fields" in r.stderr,
+          f"--per-window without --fields: exit {r.returncode}; {r.stderr.strip()}")
+
+
+def run(check, work, case, h5, blockmesh, label, windows, alpha, how):
+    """calibrate_drifts.py --fields onto a fresh target; checks every cell. Returns the counts."""
+    lo = (0.01 - alpha) / (1 - alpha)  # alpha_s + lambda alpha_f >= 0.01
+    target = os.path.join(work, "bulk_target_" + label.replace(" ", "_").replace(",", ""))
+    target_case(target, blockmesh, alpha)
+    cmd, stdout, j = calibrate(check, case, target, label,
+                               ["--windows", windows, "--field-mean", how])
     consts = {q: j["drifts"][q]["value"] for q in cd.DRIFTS}
     want, empty_bins = expected(h5, consts, windows, how)
     clipped = 0
     for q, (key, *_) in cd.DRIFTS.items():
         path = os.path.join(target, "constant", key)
-        got = np.array(foamcase.read_internal_field(path))
-        check(got.size == NX * NY, f"{label}: {key}: {got.size} cell values ({NX * NY} cells)")
-        clip = np.clip(want[q], lo, 1e3)
-        n_clip = int(((want[q] < lo) | (want[q] > 1e3)).sum())
-        err = float(np.max(np.abs(got - clip)))
-        check(err <= 1e-12 * max(1.0, float(np.max(np.abs(clip)))),
-              f"{label}: {key}: every cell equals its bin's {how} mean (the constant "
-              f"{consts[q]:.5g} outside the grid and in the {empty_bins[q]} bins without a "
-              f"selected window), clipped to [{lo:.4g}, 1000]: max |diff| {err:.2e}")
+        n_clip = check_cells(check, f"{label} ({how} mean; the constant {consts[q]:.5g} outside "
+                             f"the grid and in the {empty_bins[q]} bins without a selected "
+                             "window)", key, path, want[q], lo)
         fj = j["fields"][key]
         clipped += fj["clipped_cells"]
         check(fj["clipped_cells"] == n_clip, f"{label}: {key}: {fj['clipped_cells']} cells "
               f"reported clipped, {n_clip} expected")
-        check(f"{key}: {NX * NY} cells" in r.stdout and
-              f"{fj['clipped_cells']} clipped" in r.stdout, f"{label}: {key}: counts printed")
+        check(f"{key}: {NX * NY} cells" in stdout and
+              f"{fj['clipped_cells']} clipped" in stdout, f"{label}: {key}: counts printed")
         outside = (NX * NY) - 32 * 8  # cells beyond the 0.8 x 0.2 m grid
         check(fj["fallback_cells"] == outside + 4 * empty_bins[q],
               f"{label}: {key}: {fj['fallback_cells']} cells take the constant (the {outside} "
@@ -162,6 +237,7 @@ def main():
           f"exercised): {counts[RUNS[0][0]][0]}")
     check(counts[RUNS[1][0]][1] > 0, f"cells are clipped (the clip is exercised): "
           f"{counts[RUNS[1][0]][1]}")
+    run_per_window(check, work, case, h5, blockmesh)
 
     # Refusals: --fields without --target, a target without a mesh; nothing written.
     r = subprocess.run(cmd[:3] + ["--target", os.path.join(work, "bulk_target_clipped"), "--fields",

@@ -194,10 +194,16 @@ def close_patches(case, names):
                                           "    pRefValue 0;")])
 
 
+def mesh_size(case):
+    """(nx, ny) of the 2-D block mixflowPrepare wrote into system/blockMeshDict."""
+    with open(os.path.join(case, "system/blockMeshDict")) as f:
+        return tuple(int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)",
+                                               f.read()).groups())
+
+
 def flat_layer(case, depth):
     """Replace prepare's column by a layer filling the channel to DEPTH (a cell face)."""
-    with open(os.path.join(case, "system/blockMeshDict")) as f:
-        nx, ny = (int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)", f.read()).groups())
+    nx, ny = mesh_size(case)
     with open(os.path.join(case, "constant/sceneProperties")) as f:
         height = float(re.search(r"channel \{ length \S+; height ([^;]+);", f.read()).group(1))
     rows = round(depth / height * ny)
@@ -290,6 +296,14 @@ BAD = [
      ["constant/bulkProperties", "basal.law", "coulomb"]),
     ("drift fields without their files", "drifts { fields on; }\n",
      ["constant/bulkProperties", "fields", "constant/lambdaU"]),
+    ("time-varying drifts without fields", "drifts { timeVarying on; }\n",
+     ["constant/bulkProperties", "timeVarying", "needs fields on"]),
+    ("time-varying drift fields without windows", "drifts { fields on; timeVarying on; }\n",
+     ["constant/bulkProperties", "timeVarying", "constant/drifts", "holds no window"]),
+    ("drift interpolation without time-varying fields", "drifts { interpolation nearest; }\n",
+     ["constant/bulkProperties", "interpolation", "timeVarying on"]),
+    ("drift interpolation word", "drifts { interpolation cubic; }\n",
+     ["constant/bulkProperties", "interpolation", "linear", "nearest"]),
     ("solid rheology word", "solid { rheology bagnold; }\n",
      ["constant/bulkProperties", "rheology", "coulombViscoplastic", "muI"]),
     ("Coulomb entry with muI", "solid { rheology muI; tanPhi 0.4; }\n",
@@ -338,18 +352,35 @@ def drifting(a, work):
     return ok
 
 
-def drift_field_file(case, name, internal):
-    """constant/NAME, a drift field (bulkProperties drifts { fields on; }): INTERNAL is
-    'uniform V' or a list of cell values."""
+def drift_field_file(case, name, internal, window=None):
+    """constant/NAME, a drift field (bulkProperties drifts { fields on; }), or with WINDOW (its
+    time name) constant/drifts/WINDOW/NAME, a window of time-varying ones: INTERNAL is 'uniform V'
+    or a list of cell values."""
     if not isinstance(internal, str):
         internal = lc.fc.format_scalar_list(internal)
-    lc.fc.write_foam_file(case, "constant/" + name, "volScalarField", name,
+    rel = f"constant/drifts/{window}/{name}" if window else "constant/" + name
+    os.makedirs(os.path.dirname(os.path.join(case, rel)), exist_ok=True)
+    lc.fc.write_foam_file(case, rel, "volScalarField", name,
                           f"dimensions [0 0 0 0 0 0 0];\ninternalField {internal};\n"
                           "boundaryField\n{\n    \".*\" { type zeroGradient; }\n"
                           "    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
 
 
 FIELD_DRIFTS = {"lambdaU": 1.3, "lambdaW": 0.8, "lambdaP": 0.6}
+
+
+def field_drift_case(work, name, windows=(), end=0.3, write_interval=0.1, extra=""):
+    """A bulk case with the drift constants FIELD_DRIFTS and drifts { fields on; }: the fixed
+    fields or, with WINDOWS (time names), time-varying ones (EXTRA: more drifts entries), every
+    file uniform at the constants."""
+    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    varying = "timeVarying on; " if windows else ""
+    case = bulk_case(work, name, WATER, f"drifts {{ {consts}fields on; {varying}{extra}}}\n", end,
+                     write_interval)
+    for window in windows or [None]:
+        for k, v in FIELD_DRIFTS.items():
+            drift_field_file(case, k, f"uniform {v:g}", window)
+    return case
 
 
 def drift_fields(a, work):
@@ -359,53 +390,64 @@ def drift_fields(a, work):
     lambda = (1.3, 0.8, 0.6), so each place the drifts enter is exercised."""
     consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     ref = bulk_case(work, "bulk_drift_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
-    fld = bulk_case(work, "bulk_drift_fields", WATER, f"drifts {{ {consts}fields on; }}\n", 0.3)
-    for k, v in FIELD_DRIFTS.items():
-        drift_field_file(fld, k, f"uniform {v:g}")
-    sr = lc.run_case(a, ref, solver=a.bulk_solver)
-    sf = lc.run_case(a, fld, solver=a.bulk_solver)
+    fld = field_drift_case(work, "bulk_drift_fields")
+    lc.run_case(a, ref, solver=a.bulk_solver)
+    lc.run_case(a, fld, solver=a.bulk_solver)
     log = open(os.path.join(fld, "log.mixflowBulkFoam")).read()
     ok = lc.check("drifts the fields constant/lambdaU" in log and "drift field" in log,
                   "the fields run reads constant/lambdaU, lambdaW, lambdaP")
-    series = [open(os.path.join(c, "postProcessing/liquid/timeSeries.csv"), "rb").read()
-              for c in (ref, fld)]
-    ok &= lc.check(len(sr) > 10 and series[0] == series[1],
-                   f"time series: {len(sf)} rows against {len(sr)}, byte for byte identical: "
-                   f"{series[0] == series[1]} (front at the end {sf[-1]['front_bed_m']:.6f} m)")
-    times = field_times(ref)
+    return ok & identical_runs(ref, fld)
+
+
+def series_rows(case, before=math.inf):
+    """The rows of the case's time series (postProcessing/liquid/timeSeries.csv) as text, those
+    of times before BEFORE."""
+    with open(os.path.join(case, "postProcessing/liquid/timeSeries.csv")) as f:
+        lines = f.read().splitlines()
+    head = [ln for ln in lines if not ln[:1].isdigit()]
+    return head + [ln for ln in lines if ln[:1].isdigit() and float(ln.split(",")[0]) < before]
+
+
+def identical_runs(ref, run, before=math.inf):
+    """RUN's time series rows and written field files byte for byte equal to REF's, those of
+    times before BEFORE."""
+    sr, sf = series_rows(ref, before), series_rows(run, before)
+    upto = f" before t = {before:g} s" if before < math.inf else ""
+    ok = lc.check(len(sr) > 10 and sr == sf,
+                  f"time series{upto}: {len(sf)} lines against {len(sr)}, byte for byte "
+                  f"identical: {sr == sf}")
+    times = [t for t in field_times(ref) if float(t) < before]
     differ = []
     for t in times:
         for name in sorted(os.listdir(os.path.join(ref, t))):
-            pr, pf = os.path.join(ref, t, name), os.path.join(fld, t, name)
+            pr, pf = os.path.join(ref, t, name), os.path.join(run, t, name)
             if os.path.isfile(pr) and (not os.path.isfile(pf) or
                                        open(pr, "rb").read() != open(pf, "rb").read()):
                 differ.append(f"{t}/{name}")
-    ok &= lc.check(times == field_times(fld) and not differ,
-                   f"written fields at {', '.join(times)} s byte for byte identical "
+    ok &= lc.check(times and times == [t for t in field_times(run) if float(t) < before] and
+                   not differ, f"written fields at {', '.join(times)} s byte for byte identical "
                    f"(differing: {differ[:5] or 'none'})")
     return ok
 
 
-def drift_field_range(a, work):
+def drift_field_range(a, work, window=None):
     """A drift field with cells outside alpha_s + lambda alpha_f >= 0.01 is refused by
-    mixflowBulkFoam before the first step, naming the file, the field, the count and the range."""
-    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
-    case = bulk_case(work, "bulk_drift_field_range", WATER, f"drifts {{ {consts}fields on; }}\n",
-                     0.3)
-    for k, v in FIELD_DRIFTS.items():
-        drift_field_file(case, k, f"uniform {v:g}")  # mixflowPrepare wants the files
+    mixflowBulkFoam before the first step, naming the file, the field, the count and the range;
+    with WINDOW, that window of time-varying fields (the others in range)."""
+    windows = SERIES_WINDOWS if window else ()
+    case = field_drift_case(work, "bulk_drift_field_range", windows)  # prepare wants the files
     lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
-    with open(os.path.join(case, "system/blockMeshDict")) as f:
-        nx, ny = (int(v) for v in re.search(r"hex \([^)]*\) \((\d+) (\d+) 1\)", f.read()).groups())
+    nx, ny = mesh_size(case)
     values = [0.8] * (nx * ny)
     for c in (5, 77, 1000):
         values[c] = -2.0  # alpha_s 0.6: allowed lambda >= (0.01 - 0.6) / 0.4 = -1.475
-    drift_field_file(case, "lambdaW", values)
+    drift_field_file(case, "lambdaW", values, window)
     lc.fc.run([a.blockmesh], case, "log.blockMesh")
     r = lc.subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True,
                           env=lc.fc.run_env())
     msg = r.stdout + r.stderr
-    want = ["constant/lambdaW", "field lambdaW", f"3 of {nx * ny} cells", "-1.475", "[-2, 0.8]"]
+    file = f"constant/drifts/{window}/lambdaW" if window else "constant/lambdaW"
+    want = [file, "field lambdaW", f"3 of {nx * ny} cells", "-1.475", "[-2, 0.8]"]
     missing = [w for w in want if w not in msg]
     line = next((ln for ln in msg.splitlines() if "lambdaW" in ln and "outside" in ln), "")
     ok = lc.check(r.returncode != 0 and not missing, f"refused (exit {r.returncode}): {line.strip()}"
@@ -415,18 +457,172 @@ def drift_field_range(a, work):
     return ok
 
 
-def prepared_bound(a, work, name, consts, fields):
+# ------------------------------------------------------------------ time-varying drift fields
+SERIES_WINDOWS = ("0.05", "0.15", "0.25")
+
+
+def drift_series(a, work):
+    """Time-varying drift fields whose windows (0.05, 0.15, 0.25 s) all equal the constants
+    (1.3, 0.8, 0.6): the run is the constant drifts' run bit for bit (time series and every
+    written field file), the drifts being brought to the time at every step."""
+    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    ref = bulk_case(work, "bulk_series_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
+    series = field_drift_case(work, "bulk_series_uniform", SERIES_WINDOWS)
+    lc.run_case(a, ref, solver=a.bulk_solver)
+    lc.run_case(a, series, solver=a.bulk_solver)
+    log = open(os.path.join(series, "log.mixflowBulkFoam")).read()
+    read = len(re.findall(r"drift field \S*constant/drifts/", log))
+    ok = lc.check("the fields of the 3 windows constant/drifts/<t>/" in log and read == 9,
+                  f"the series run reads the 3 windows, {read} fields (9)")
+    return ok & identical_runs(ref, series)
+
+
+STEP = (0.1, 0.22)  # the two windows of drift-series-step (s)
+
+
+def step_drifts(i):
+    """The later window's drifts of cell I: inside the range, each unlike the constants."""
+    return {"lambdaU": 1.1 + 0.05 * (i % 7), "lambdaW": 0.6 + 0.1 * (i % 5),
+            "lambdaP": 0.4 + 0.1 * (i % 3)}
+
+
+def drifts_used(case, t):
+    """The drifts each mixture cell used at the write T, from the reconstruction written there
+    (writeBulkFields.H): lambda_u = U.fluid_x / U.solid_x, lambda_w = U.fluid_y / U.solid_y,
+    lambda_p = (p.fluid / p.solid) rho_s / rho_f; {name: {cell: value}} where the divisor is
+    not 0."""
+    field = {n: lc.fc.read_internal_field(os.path.join(case, t, n))
+             for n in ("U.solid", "U.fluid", "p.solid", "p.fluid")}
+    out = {k: {} for k in FIELD_DRIFTS}
+    for i, (us, uf) in enumerate(zip(field["U.solid"], field["U.fluid"])):
+        for k, c in (("lambdaU", 0), ("lambdaW", 1)):
+            if abs(us[c]) > 1e-12:
+                out[k][i] = uf[c] / us[c]
+        ps, pf = field["p.solid"][i], field["p.fluid"][i]
+        if abs(ps) > 1e-9:
+            out["lambdaP"][i] = pf / ps * RHO_S / 1000.0  # WATER's density
+    return out
+
+
+def check_drifts_used(case, t, weight, later):
+    """The drifts used at the write T equal the constants + WEIGHT (LATER - constants) in every
+    mixture cell within 1e-10 (the reconstruction's ratios are exact to a few ulp)."""
+    used = drifts_used(case, t)
+    err = 0.0
+    for k, values in used.items():
+        for i, v in values.items():
+            want = FIELD_DRIFTS[k] + weight * (later[i][k] - FIELD_DRIFTS[k])
+            err = max(err, abs(v - want))
+    cells = min(len(values) for values in used.values())
+    return lc.check(cells > 100 and err <= 1e-10,
+                    f"{os.path.basename(case)}: t = {t} s: drifts used = first + {weight:.4f} "
+                    f"(second - first) in {cells}+ mixture cells each: max |diff| {err:.1e} "
+                    "(<= 1e-10)")
+
+
+def step_series_case(a, work, name, how, end):
+    """The step scenario's case: windows at STEP, the first at the constants, the second
+    step_drifts of each cell (the cells of the mesh mixflowPrepare makes), interpolation HOW,
+    writes every 0.05 s at full precision. Returns it and the second window's drifts."""
+    case = field_drift_case(work, name, tuple(f"{t:g}" for t in STEP), end, 0.05,
+                            f"interpolation {how}; ")
+    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    nx, ny = mesh_size(case)
+    later = [step_drifts(i) for i in range(nx * ny)]
+    for k in FIELD_DRIFTS:
+        drift_field_file(case, k, [d[k] for d in later], f"{STEP[1]:g}")
+    with open(os.path.join(case, "system/controlDict"), "a") as f:
+        f.write("writePrecision 17;\n")
+    return case, later
+
+
+def step_weight(t, how):
+    """The weight of the later window at t: linear in time between the windows, 0 or 1 for
+    nearest, held outside."""
+    w = min(max((t - STEP[0]) / (STEP[1] - STEP[0]), 0.0), 1.0)
+    return w if how == "linear" else float(w >= 0.5)
+
+
+def drift_series_step(a, work):
+    """Two windows, at 0.1 s the constants (1.3, 0.8, 0.6) and at 0.22 s drifts varying cell by
+    cell: up to 0.1 s the run is the fixed fields' run at the constants bit for bit; at every
+    write from 0.1 s on the drifts each cell used, recovered from the reconstruction, are the
+    linear interpolation in time (or with `interpolation nearest` the nearer window's), the later
+    window's after 0.22 s, within 1e-10."""
+    ref = field_drift_case(work, "bulk_step_fixed", (), 0.3, 0.05)
+    with open(os.path.join(ref, "system/controlDict"), "a") as f:
+        f.write("writePrecision 17;\n")
+    lc.run_case(a, ref, solver=a.bulk_solver)
+    ok = True
+    for how in ("linear", "nearest"):
+        case, later = step_series_case(a, work, f"bulk_step_{how}", how, 0.3)
+        lc.run_case(a, case, solver=a.bulk_solver)
+        ok &= identical_runs(ref, case, before=STEP[0] - 1e-9)
+        for t in field_times(case):
+            if float(t) >= STEP[0] - 1e-9:
+                ok &= check_drifts_used(case, t, step_weight(float(t), how), later)
+    return ok
+
+
+def drift_series_parallel(a, work):
+    """drift-series-step's linear case on 2 ranks to 0.15 s, decomposed by the Allruns' decompose
+    (scripts/RunFunctions): every rank's windows hold its cells' values of the case's windows
+    (by cellProcAddressing, exactly), and the drifts used at 0.15 s are the linear interpolation
+    within 1e-10, as serially."""
+    ranks = 2
+    case, later = step_series_case(a, work, "bulk_series_parallel", "linear", 0.15)
+    lc.fc.run([a.prepare, "-case", case, "-np", str(ranks)], case, "log.mixflowPrepare")
+    lc.fc.run([a.blockmesh], case, "log.blockMesh")
+    functions = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
+                             "RunFunctions")
+    lc.fc.run(["bash", "-c", f'. "{functions}" && decompose {ranks}'], case, "log.decompose")
+    worst, files = 0.0, 0
+    for r in range(ranks):
+        proc = os.path.join(case, f"processor{r}")
+        cells = lc.fc.read_label_list(os.path.join(proc, "constant/polyMesh/cellProcAddressing"))
+        for t in STEP:
+            for k in FIELD_DRIFTS:
+                whole = lc.fc.read_internal_field(os.path.join(case, f"constant/drifts/{t:g}/{k}"),
+                                                  len(later))
+                part = lc.fc.read_internal_field(os.path.join(proc, f"constant/drifts/{t:g}/{k}"),
+                                                 len(cells))
+                worst = max(worst, max(abs(p - whole[c]) for p, c in zip(part, cells)))
+                files += 1
+    ok = lc.check(files == ranks * len(STEP) * 3 and worst == 0,
+                  f"decompose {ranks}: {files} window files on the ranks, each cell equal to the "
+                  f"case's: max |diff| {worst:g} (0)")
+    log = lc.fc.run(lc.fc.launcher_tokens(a.mpiexec) + ["-x", "WM_PROJECT_DIR", "-np", str(ranks),
+                                                        a.bulk_solver, "-parallel"],
+                    case, "log.mixflowBulkFoam")
+    ok &= lc.check(re.search(rf"^nProcs\s*:\s*{ranks}\s*$", log, re.M) is not None,
+                   f"a parallel run on {ranks} ranks")
+    lc.fc.run([a.reconstructpar, "-latestTime"], case, "log.reconstructPar")
+    t = field_times(case)[-1]
+    return ok & check_drifts_used(case, t, step_weight(float(t), "linear"), later)
+
+
+def prepared_bound(a, work, name, consts, fields, windows=None):
     """(viscosity at rest in Pa s, maxDeltaT in s) of mixflowPrepare for a bulk case with drift
-    constants CONSTS and, if FIELDS, drift fields {name: 'uniform V' or a list of cell values}."""
+    constants CONSTS and, if FIELDS, drift fields {name: 'uniform V' or a list of cell values};
+    or with WINDOWS, time-varying ones {window: FIELDS}. The viscosity of `mixflowPrepare -check`
+    must be the same."""
     text = "".join(f"{k} {v:g}; " for k, v in consts.items())
-    case = bulk_case(work, name, WATER, f"drifts {{ {text}{'fields on; ' if fields else ''}}}\n",
-                     0.3)
-    for k, v in (fields or {}).items():
-        drift_field_file(case, k, v)
+    text += "fields on; " if fields or windows else ""
+    text += "timeVarying on; " if windows else ""
+    case = bulk_case(work, name, WATER, f"drifts {{ {text}}}\n", 0.3)
+    for window, values in (windows or {None: fields or {}}).items():
+        for k, v in values.items():
+            drift_field_file(case, k, v, window)
+    check = lc.fc.run([a.prepare, "-case", case, "-np", "1", "-check"], case, "log.check")
     log = lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
     with open(os.path.join(case, "system/controlDict.generated")) as f:
         dt = float(re.search(r"^maxDeltaT\s+(\S+);", f.read(), re.M).group(1))
-    return float(re.search(r"viscosity at rest up to (\S+) Pa s", log).group(1)), dt
+    mu, mu_check = (float(re.search(r"viscosity at rest up to (\S+) Pa s", t).group(1))
+                    for t in (log, check))
+    if mu_check != mu:
+        lc.fc.fail(f"{case}: mixflowPrepare -check's viscosity at rest {mu_check:g} Pa s, its "
+                   f"run's {mu:g} Pa s")
+    return mu, dt
 
 
 def drift_field_step(a, work):
@@ -434,7 +630,8 @@ def drift_field_step(a, work):
     mixture's viscosity at rest, and the PISO correctors chosen from it) takes the stiffest cell:
     constant drifts (1.3, 0.8, 0.6) with one field cell at lambda_p = -1 give the viscosity and
     maxDeltaT of the constants (1.3, 0.8, -1); uniform fields equal to the constants give the
-    constants' own."""
+    constants' own; time-varying fields with that cell in their last window of three give the
+    stiff constants', as `mixflowPrepare -check` says too."""
     stiff = dict(FIELD_DRIFTS, lambdaP=-1.0)
     base = prepared_bound(a, work, "bulk_step_constants", FIELD_DRIFTS, None)
     bound = prepared_bound(a, work, "bulk_step_stiff_constants", stiff, None)
@@ -443,12 +640,19 @@ def drift_field_step(a, work):
     cells = {k: [v] * 50 for k, v in FIELD_DRIFTS.items()}
     cells["lambdaP"][17] = -1.0
     one = prepared_bound(a, work, "bulk_step_one_cell", FIELD_DRIFTS, cells)
+    uniform_fields = {k: f"uniform {v:g}" for k, v in FIELD_DRIFTS.items()}
+    windows = dict.fromkeys(SERIES_WINDOWS, uniform_fields)
+    windows[SERIES_WINDOWS[-1]] = cells
+    late = prepared_bound(a, work, "bulk_step_late_window", FIELD_DRIFTS, None, windows)
     ok = lc.check(bound[0] > 1.1 * base[0], f"lambda_p -1 raises the viscosity at rest: "
                   f"{bound[0]:.4g} Pa s against {base[0]:.4g} Pa s")
     ok &= lc.check(uniform == base, f"uniform fields equal to the constants: {uniform} against "
                    f"{base} (Pa s, s)")
     ok &= lc.check(one == bound, f"one cell at lambda_p -1: {one} against the stiff constants' "
                    f"{bound} (Pa s, s)")
+    ok &= lc.check(late == bound, f"time-varying fields, that cell in the window "
+                   f"{SERIES_WINDOWS[-1]} s: {late} against the stiff constants' {bound} (Pa s, "
+                   "s; -check the same)")
     return ok
 
 
@@ -829,7 +1033,10 @@ def mui_rest(a, work):
 
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "drift-fields": drift_fields, "drift-field-range": drift_field_range,
-             "drift-field-step": drift_field_step,
+             "drift-field-step": drift_field_step, "drift-series": drift_series,
+             "drift-series-step": drift_series_step,
+             "drift-series-range": lambda a, work: drift_field_range(a, work, SERIES_WINDOWS[1]),
+             "drift-series-parallel": drift_series_parallel,
              "cohesive-arrest": cohesive_arrest, "bad-input": bad_input,
              "closed-box": closed_box, "rest": rest,
              "incline": incline, "sliding-block": sliding_block,
