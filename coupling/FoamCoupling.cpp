@@ -16,16 +16,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "CouplingProperties.h"
+#include "DemDict.h"
 #include "DemLink.h"
 #include "DragScheme.h"
 #include "FoamCellLocator.H"
 #include "ForceModel.h"
 #include "LiggghtsSession.h"
 #include "ParticleRouting.h"
+#include "SlabBalance.h"
 #include "SourceAssembly.h"
 #include "Vec3.h"
 #include "VoidFractionModel.h"
@@ -178,6 +181,23 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   for (const auto& m : forceModels_) modelNames.push_back(m->name());
   log_ = std::make_unique<ExchangeLog>(runTime, props_->exchangeEvery, props_->logEvery, modelNames,
                                        resume_);
+  balanceInterval_ = demBalanceInterval(std::string(runTime.globalPath()) + "/system/demDict");
+  if (balanceInterval_ > 0)
+    Foam::Info << "Coupling: the DEM's x slabs are re-balanced by particles every "
+               << balanceInterval_
+               << " s (demDict balanceInterval); the exchange routes each "
+                  "particle to the ranks of its cells"
+               << Foam::endl;
+}
+
+// demDict's balanceInterval, or 0 without a demDict (the coupling tests' cases have none).
+double FoamCoupling::demBalanceInterval(const std::string& file) {
+  if (!std::ifstream(file)) return 0;
+  try {
+    return DemDict::read(Dictionary::readFile(file)).dem.balanceInterval;
+  } catch (const InputError& e) {
+    fatal(e.what());
+  }
 }
 
 FoamCoupling::~FoamCoupling() = default;
@@ -232,7 +252,20 @@ void FoamCoupling::exchange() {
 }
 
 void FoamCoupling::evolve() {
-  clock_.time(StageClock::dem, [&] { dem_->run(props_->exchangeEvery); });
+  clock_.time(StageClock::dem, [&] {
+    // Between intervals the per-particle drag state lives in LIGGGHTS' per-atom arrays, which
+    // migrate with the particles, so the slabs can move here as at any re-neighbouring.
+    const double t = mesh_.time().value();
+    if (balanceInterval_ > 0 && t >= nextBalance_ - 0.5 * exchangeInterval_) {
+      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && nextBalance_ == 0)
+        Foam::Info
+            << "Coupling: balanceInterval: the DEM's processor grid is not x slabs (set "
+               "demDict processors \"* 1 1\") or there is one rank; the slabs stay as they are"
+            << Foam::endl;
+      nextBalance_ = t + balanceInterval_;
+    }
+    dem_->run(props_->exchangeEvery);
+  });
   exchange();
 }
 

@@ -11,6 +11,8 @@ settled sample of the first:
   repeat      ./Allrun 1 again: must be identical (determinism)
   perturbed   ./Allrun 1 with the liquid density times (1 + 1e-12): a round-off-sized change
   ranks       ./Allrun RANKS (decomposed fluid and DEM)
+  balanced    ./Allrun RANKS with the DEM's x slabs re-balanced by particles every 0.05 s (demDict
+              balanceInterval 0.05, processors "* 1 1"): the DEM apart from the fluid's slabs
 Compared with the serial run at every common output time: the granular front (postProcessing/dem
 front_x_m), the grains' translational kinetic energy, the liquid front (postProcessing/liquid
 front_bed_m): the largest difference over the run, and at the end, absolute and relative to the
@@ -38,8 +40,12 @@ QUANTITIES = {"granular_front_m": ("dem", "front_x_m"),
               "liquid_front_m": ("liquid", "front_bed_m")}
 
 
-def make_case(work, scene, label, density_factor=1.0):
-    """cases/W+P-quick's inputs with SCENE's liquid block in WORK/SCENE/LABEL."""
+BALANCED = {"balanceInterval": "0.05", "processors": '"* 1 1"'}
+
+
+def make_case(work, scene, label, density_factor=1.0, dem=None):
+    """cases/W+P-quick's inputs with SCENE's liquid block in WORK/SCENE/LABEL (DEM: demDict
+    entries to set)."""
     d = os.path.join(work, scene, label)
     shutil.rmtree(d, ignore_errors=True)
     outputs.copy_inputs(os.path.join(ROOT, "cases", "W+P-quick"), d)
@@ -52,6 +58,9 @@ def make_case(work, scene, label, density_factor=1.0):
         text, _ = foamdict.edit_dict(text, {"liquid": {"density": repr(rho * density_factor)}},
                                   note="round-off perturbation (scripts/reproducibility.py)")
     open(sp, "w").write(text)
+    if dem:
+        foamdict.edit_file(os.path.join(d, "system", "demDict"), dem,
+                           note="scripts/reproducibility.py")
     return d
 
 
@@ -105,7 +114,9 @@ def main():
         settled = os.path.join(serial, "dem")
         runs = {"repeat": (make_case(a.work, scene, "repeat"), 1),
                 "perturbed": (make_case(a.work, scene, "perturbed", 1 + PERTURBATION), 1),
-                f"ranks{a.ranks}": (make_case(a.work, scene, f"ranks{a.ranks}"), a.ranks)}
+                f"ranks{a.ranks}": (make_case(a.work, scene, f"ranks{a.ranks}"), a.ranks),
+                f"balanced{a.ranks}": (make_case(a.work, scene, f"balanced{a.ranks}",
+                                                 dem=BALANCED), a.ranks)}
         summary["scenes"][scene] = {}
         for label, (case, ranks) in runs.items():
             allrun(case, ranks, settled)
