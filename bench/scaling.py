@@ -11,10 +11,12 @@ sample, dem/RankLoad.h), over the collapse (after the gate opens):
 The efficiency at 2 ranks is T1 / (2 T2) of the wall time of the whole ./Allrun, from serial and
 2-rank runs alternated --repeat times (median of each), on a machine with 2 idle cores.
 --balance S sets demDict balanceInterval S and processors "* 1 1" (x slabs re-balanced by
-particles, dem/SlabBalance.h; dry scenes only); 0 keeps LIGGGHTS' equal slabs.
+particles, dem/SlabBalance.h; in a mixture the fluid keeps its slabs and the exchange routes each
+particle to its cells' ranks); 0 keeps LIGGGHTS' equal slabs. --tier T runs the scene as
+scripts/suite.py --tier T would (e.g. reference), --end S sets its controlDict endTime.
 
 usage: scaling.py [--scenes P-quick,W+P-quick] [--ranks 1,2,4,8] [--repeat 2] [--balance 0]
-                  [--json results/bench/scaling.json] [--work runs/scaling]
+                  [--tier TIER] [--end S] [--json results/bench/scaling.json] [--work runs/scaling]
 """
 import argparse
 import os
@@ -28,20 +30,31 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from mixflow import foamcase, foamdict, outputs  # noqa: E402
+import suite  # noqa: E402
 
 SCENE_NAMES = {"P-quick": "P", "W+P-quick": "W&P", "P": "P", "W+P": "W&P"}
 
 
-def run_case(scene, ranks, work, tag, balance):
-    """Fresh copy of cases/SCENE run with ./Allrun RANKS; (wall s, case dir)."""
+def run_case(scene, ranks, work, tag, balance, tier=None, end=None):
+    """Fresh copy of cases/SCENE (with TIER's overrides) run with ./Allrun RANKS; (wall s, case
+    dir)."""
     case = os.path.join(work, f"{scene}-np{ranks}-{tag}")
     shutil.rmtree(case, ignore_errors=True)
-    outputs.copy_inputs(os.path.join(ROOT, "cases", scene), case)
+    if tier:
+        src = os.path.join(ROOT, "cases", scene)
+        texts, records = suite.tier_edits(src, tier, scene)
+        suite.make_copy(scene, case, tier, texts, records, suite.scene_content(src))
+    else:
+        outputs.copy_inputs(os.path.join(ROOT, "cases", scene), case)
     if balance > 0:
         foamdict.edit_file(os.path.join(case, "system", "demDict"),
                            {"balanceInterval": str(balance), "processors": '"* 1 1"'},
                            note="bench/scaling.py")
+    if end:
+        foamdict.edit_file(os.path.join(case, "system", "controlDict"), {"endTime": str(end)},
+                           note="bench/scaling.py --end")
     env = foamcase.run_env()
     t0 = time.perf_counter()
     with open(os.path.join(case, "log.Allrun"), "w") as log:
@@ -82,13 +95,17 @@ def main():
     ap.add_argument("--ranks", default="1,2,4,8")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--balance", type=float, default=0.0)
+    ap.add_argument("--tier", help="a tier of scripts/suite.py (reference, ...) applied to the "
+                    "scene's copy; default: the case as it is")
+    ap.add_argument("--end", type=float, help="controlDict endTime (s) of every run")
     ap.add_argument("--json", default=os.path.join(ROOT, "results", "bench", "scaling.json"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "scaling"))
     args = ap.parse_args()
     ranks = [int(r) for r in args.ranks.split(",")]
+    tier = suite.Tier(args.tier) if args.tier else None
     out = {"imbalance_max_over_mean": {}, "compute_imbalance_max_over_mean": {},
            "efficiency_2_ranks": {}, "wall_s": {}, "per_run": {},
-           "balance_interval_s": args.balance,
+           "balance_interval_s": args.balance, "tier": args.tier, "end_time_s": args.end,
            "command": "python3 bench/scaling.py " + " ".join(sys.argv[1:])}
     for scene in args.scenes.split(","):
         name = SCENE_NAMES.get(scene, scene)
@@ -96,14 +113,15 @@ def main():
         # Serial and 2-rank runs alternate so that a drift of the machine hits both alike.
         for k in range(args.repeat):
             for n in (1, 2):
-                wall, case = run_case(scene, n, args.work, f"r{k}", args.balance)
+                wall, case = run_case(scene, n, args.work, f"r{k}", args.balance, tier,
+                                      args.end)
                 walls[n].append(wall)
                 out["per_run"][f"{scene} np{n} r{k}"] = load_figures(case)
                 print(f"{scene} np{n} r{k}: wall {wall:.1f} s", flush=True)
         for n in ranks:
             if n in (1, 2):
                 continue
-            wall, case = run_case(scene, n, args.work, "r0", args.balance)
+            wall, case = run_case(scene, n, args.work, "r0", args.balance, tier, args.end)
             out["per_run"][f"{scene} np{n} r0"] = load_figures(case)
             print(f"{scene} np{n}: wall {wall:.1f} s (oversubscribed)", flush=True)
         out["imbalance_max_over_mean"][name] = {
