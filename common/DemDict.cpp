@@ -77,8 +77,10 @@ Schema makeSchema() {
               "balanceInterval", m.balanceInterval, Range::nonNegative(), "s",
               "of the collapse between re-balances of the DEM's x slabs so that each "
               "rank holds about the same number of particles (at the start of the settling, "
-              "at the gate opening and then at this interval; dry scenes with an "
-              "N × 1 × 1 grid); 0: the equal slabs LIGGGHTS makes"),
+              "at the gate opening and then at this interval; needs an N × 1 × 1 grid, "
+              "`processors \"* 1 1\"`). In a mixture the fluid keeps its own decomposition and "
+              "the exchange routes each particle to the ranks of its cells; 0: the equal "
+              "slabs LIGGGHTS makes"),
           switchParam(
               "binarySnapshots", m.binarySnapshots,
               "beside each VTK snapshot, the same columns in LIGGGHTS' binary dump "
