@@ -314,6 +314,15 @@ def locked(s):
                  f"at 1.5 s against {df['granular_front_m']:.2f} m, because the held drag's "
                  f"stability bound caps the drag of {100 * pf['drag_limited_share']:.0f} % of the "
                  "grains")
+    pw = ys.get("paper_faithful", {}).get("paper_window", {})
+    if "paper" in pw and "default" in pw:
+        t = max(set(pw["paper"]["at"]) & set(pw["default"]["at"]), key=float)
+        pp, dd = pw["paper"]["at"][t], pw["default"]["at"][t]
+        note += (f"; at the paper's stiffness and steps (HB&P, paper-window tier, {t} s) the "
+                 f"paper-faithful scheme holds the column (granular front "
+                 f"{pp['granular_front_m']:.2f} m, back wall {pp['back_wall_surface_H']:.3f} H) "
+                 f"and the verified drag flows ({dd['granular_front_m']:.2f} m, "
+                 f"{dd['back_wall_surface_H']:.3f} H)")
     packing = ys.get("packing", {}).get("HB&P", {})
     dense, loose = packing.get("0.6056:0.1"), packing.get("0.56:0.7")
     if dense and loose:
@@ -353,7 +362,7 @@ def table(sc, law):
             rows.append(row(q, paper, None, s.tier, False, note))
         elif dt is None:
             note = (f"still supercritical when the run ended at {s.t_end():.2f} s (t0 = {t0:.2f} s); "
-                    + fidelity(s))
+                    + fidelity(s) + ("; " + locked(s) if locked(s) else ""))
             rows.append(row(q, paper, None, s.tier, False, note))
         else:
             agree = abs(dt - paper) <= max(0.1, 0.15 * paper)
@@ -663,6 +672,22 @@ def yield_stress_section():
                          f"{fmt(o['back_wall_surface_0.5s_H'])} / {fmt(o['back_wall_surface_1.0s_H'])} "
                          f"| {fmt(100 * o.get('drag_limited_share', 0), 2)} % |")
     lines += ["", "The paper's HB&P back-wall surface: 0.997 / 0.894 H.", ""]
+    pw = ys.get("paper_faithful", {}).get("paper_window", {})
+    if pw:
+        lines += ["At the paper's stiffness and steps (HB&P, paper-window tier: E = 70/700 GPa, DEM "
+                  "step 5e-7 s, exchange every 100; the same grains for both schemes):", "",
+                  "| scheme | granular front 0.5 / 1.0 s (m) | grains' energy released by 1.0 s (J) "
+                  "| back-wall surface 0.5 / 1.0 s (H) |", "|---|---|---|---|"]
+        for name, what in (("default", "verified (slip, implicit)"),
+                           ("paper", "paper-faithful (resolved, held, d(eps)/dt off)")):
+            at = pw.get(name, {}).get("at", {})
+            if "0.5" in at and "1" in at:
+                lines.append(f"| {what} | {fmt(at['0.5']['granular_front_m'])} / "
+                             f"{fmt(at['1']['granular_front_m'])} | "
+                             f"{fmt(at['1']['grain_pe_released_J'])} | "
+                             f"{fmt(at['0.5']['back_wall_surface_H'])} / "
+                             f"{fmt(at['1']['back_wall_surface_H'])} |")
+        lines.append("")
     return lines
 
 

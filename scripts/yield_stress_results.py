@@ -38,11 +38,11 @@ usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out
    WORK/packing-F-MU): the target fraction only sets the grain count, the settling friction sets
    the packing (0.1, the default, settles to about 0.61). Against the reference-tier runs in
    --reference-work: the settled sample fraction, fronts at 3 s and the grains' released energy;
-   summary.json "packing", packing.csv.
+   summary.json "packing" (merged: packings not rerun keep their recorded entries), packing.csv.
 4. With --paper-window NAME=DIR,... (read only): finished paper-window runs of HB+P (made by
    `suite.py --tier cases/tiers/paper-window --scenes HB+P --work DIR [--set ...]`, e.g. the
    paper's scheme and the default): granular and liquid fronts, the grains' released energy, the
-   back-wall surface / H at 0.1-0.5 s and the share of grains the held drag's bound limited;
+   back-wall surface / H every 0.1 s up to 1 s and the share of grains the held drag's bound limited;
    summary.json "paper_faithful" "paper_window", paper_window.csv.
 """
 
@@ -103,16 +103,17 @@ def grain_checks(work, build):
         text = r.stdout
         speeds = {(m.group(1), m.group(2)): float(m.group(3)) for m in re.finditer(
             r"^\s+(\S+), dragViscosity (\w+): settling speed (\S+) m/s", text, re.M)}
-        if liquid == "bingham":
-            ref = float(re.search(r"reference speed (\S+) m/s", text).group(1))
-            for cl in out:
-                v = speeds[("bingham", cl)]
-                out[cl]["checks"]["bingham_settling_speed"] = {
-                    "measured": v, "reference": ref, "error": v / ref - 1, "tolerance": 0.1,
-                    "passes": abs(v / ref - 1) <= 0.1, "unit": "m/s",
-                    "reference_source": "Ansley & Smith creeping Bingham drag x Di Felice "
-                                        "finite-Re factor (tests/reference/bingham_sphere.csv)"}
-        elif liquid == "hb":
+        # Settling speeds against Ansley & Smith's Bingham-sphere drag, one check per Bingham
+        # number: the paper's liquid (bingham) and raised yield stresses (bingham_Y*).
+        for row in result_lines(text, "bingham_sphere"):
+            key = ("bingham_settling_speed" if row["name"] == "bingham"
+                   else f"{row['name']}_speed")
+            c = check(row["measured"], row["reference"], row["tolerance"], "m/s",
+                      "Ansley & Smith creeping Bingham drag x Di Felice finite-Re factor "
+                      "(tests/reference/bingham_sphere.csv)")
+            c.update(yield_number=row["Y"], bingham_number=row["Bi"])
+            out[row["closure"]]["checks"][key] = c
+        if liquid == "hb":
             free = float(re.search(r"settles at (\S+) m/s", text).group(1))
             for cl in out:
                 v = speeds[("hb", cl)]
@@ -121,7 +122,7 @@ def grain_checks(work, build):
                     "passes": abs(v) <= 1e-3 * free, "unit": "m/s",
                     "reference_source": "Beris et al. 1985: held for Y > 0.143 (Y = 0.255); "
                                         "error = speed / speed without the yield stress"}
-        else:
+        elif liquid == "threshold":
             free = float(re.search(r"tau_y = 0 speed (\S+) m/s", text).group(1))
             for cl in out:
                 lo, hi = speeds[("Y0.12", cl)], speeds[("Y0.2", cl)]
@@ -277,7 +278,7 @@ def mixtures(work):
     return out
 
 
-def paper_window(items, times=(0.1, 0.2, 0.3, 0.4, 0.5)):
+def paper_window(items, times=(0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)):
     """Finished paper-window runs NAME=DIR (DIR/HB+P): the observables at TIMES (those the run
     reached) and the share of grains whose held drag the stability bound limited."""
     out = {}
@@ -387,7 +388,11 @@ def main():
                 for name, obs in runs.items():
                     w.writerow([scene, name] + [obs.get(k, "") for k in keys])
     if a.packing:
-        summary["packing"] = packing(work, a.packing.split(","), os.path.abspath(a.reference_work))
+        # Merged into the earlier entries: a packing whose runs are no longer on disk keeps its
+        # recorded observables.
+        for scene, runs in packing(work, a.packing.split(","),
+                                   os.path.abspath(a.reference_work)).items():
+            summary.setdefault("packing", {}).setdefault(scene, {}).update(runs)
         with open(os.path.join(out, "packing.csv"), "w", newline="") as f:
             w = csv.writer(f)
             keys = ["settled_sample_fraction", "granular_front_m", "grain_pe_released_J",
