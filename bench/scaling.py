@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark: how the DEM work spreads over MPI ranks, and the 2-rank parallel efficiency.
 
-Each scene (default: the quick dry column P-quick and the quick mixture W+P-quick) runs with
+Each scene (default: the reference tier's mixture W+P and dry column P, to 1 s) runs with
 ./Allrun N for N in --ranks (more ranks than cores oversubscribe: their load figures hold, their
 times do not). From the run's postProcessing/dem/rankLoad.csv (written by the DEM half at every
 sample, dem/RankLoad.h), over the collapse (after the gate opens):
@@ -12,11 +12,13 @@ The efficiency at 2 ranks is T1 / (2 T2) of the wall time of the whole ./Allrun,
 2-rank runs alternated --repeat times (median of each), on a machine with 2 idle cores.
 --balance S sets demDict balanceInterval S and processors "* 1 1" (x slabs re-balanced by
 particles, dem/SlabBalance.h; in a mixture the fluid keeps its slabs and the exchange routes each
-particle to its cells' ranks); 0 keeps LIGGGHTS' equal slabs. --tier T runs the scene as
-scripts/suite.py --tier T would (e.g. reference), --end S sets its controlDict endTime.
+particle to its cells' ranks; demDict's default); 0: LIGGGHTS' own grid and equal slabs. --tier T
+runs the scene as scripts/suite.py --tier T would (none: the case as it is), --end S sets its
+controlDict endTime.
 
-usage: scaling.py [--scenes P-quick,W+P-quick] [--ranks 1,2,4,8] [--repeat 2] [--balance 0]
-                  [--tier TIER] [--end S] [--json results/bench/scaling.json] [--work runs/scaling]
+usage: scaling.py [--scenes W+P,P] [--ranks 1,2,4,8] [--repeat 2] [--balance 0.05]
+                  [--tier reference|none|...] [--end 1.0] [--json results/bench/scaling.json]
+                  [--work runs/scaling]
 """
 import argparse
 import os
@@ -48,10 +50,10 @@ def run_case(scene, ranks, work, tag, balance, tier=None, end=None):
         suite.make_copy(scene, case, tier, texts, records, suite.scene_content(src))
     else:
         outputs.copy_inputs(os.path.join(ROOT, "cases", scene), case)
-    if balance > 0:
-        foamdict.edit_file(os.path.join(case, "system", "demDict"),
-                           {"balanceInterval": str(balance), "processors": '"* 1 1"'},
-                           note="bench/scaling.py")
+    foamdict.edit_file(os.path.join(case, "system", "demDict"),
+                       {"balanceInterval": str(balance),
+                        "processors": '"* 1 1"' if balance > 0 else '"* * *"'},
+                       note="bench/scaling.py")
     if end:
         foamdict.edit_file(os.path.join(case, "system", "controlDict"), {"endTime": str(end)},
                            note="bench/scaling.py --end")
@@ -91,18 +93,19 @@ def load_figures(case):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--scenes", default="P-quick,W+P-quick")
+    ap.add_argument("--scenes", default="W+P,P")
     ap.add_argument("--ranks", default="1,2,4,8")
     ap.add_argument("--repeat", type=int, default=2)
-    ap.add_argument("--balance", type=float, default=0.0)
-    ap.add_argument("--tier", help="a tier of scripts/suite.py (reference, ...) applied to the "
-                    "scene's copy; default: the case as it is")
-    ap.add_argument("--end", type=float, help="controlDict endTime (s) of every run")
+    ap.add_argument("--balance", type=float, default=0.05)
+    ap.add_argument("--tier", default="reference", help="a tier of scripts/suite.py applied to "
+                    "the scene's copy; none: the case as it is")
+    ap.add_argument("--end", type=float, default=1.0, help="controlDict endTime (s) of every run; "
+                    "0: the case's")
     ap.add_argument("--json", default=os.path.join(ROOT, "results", "bench", "scaling.json"))
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "scaling"))
     args = ap.parse_args()
     ranks = [int(r) for r in args.ranks.split(",")]
-    tier = suite.Tier(args.tier) if args.tier else None
+    tier = suite.Tier(args.tier) if args.tier != "none" else None
     out = {"imbalance_max_over_mean": {}, "compute_imbalance_max_over_mean": {},
            "efficiency_2_ranks": {}, "wall_s": {}, "per_run": {},
            "balance_interval_s": args.balance, "tier": args.tier, "end_time_s": args.end,

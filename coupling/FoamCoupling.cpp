@@ -257,7 +257,7 @@ void FoamCoupling::evolve() {
     // migrate with the particles, so the slabs can move here as at any re-neighbouring.
     const double t = mesh_.time().value();
     if (balanceInterval_ > 0 && t >= nextBalance_ - 0.5 * exchangeInterval_) {
-      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && nextBalance_ == 0)
+      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && nextBalance_ == 0 && Foam::Pstream::parRun())
         Foam::Info
             << "Coupling: balanceInterval: the DEM's processor grid is not x slabs (set "
                "demDict processors \"* 1 1\") or there is one rank; the slabs stay as they are"

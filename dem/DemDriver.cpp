@@ -47,6 +47,7 @@ double meanKineticPerParticle(const Energies& e) {
 DemDriver::DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out)
     : scene_(scene), comm_(comm), out_(out) {
   MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &size_);
   outDir_ = (fs::path(scene.caseDir) / "postProcessing" / "dem").string();
   const std::string demDir = (fs::path(scene.caseDir) / "dem").string();
   if (rank_ == 0) fs::create_directories(demDir);
@@ -111,7 +112,7 @@ SettleReport DemDriver::settle() {
   Progress progress("settle", t, s.settle.maxTime, out_);
   bool converged = false;
   // The sample stays behind the gate while it settles: one balance at the start holds.
-  if (s.dem.balanceInterval > 0 && !balanceSlabs(*lig_, comm_) && rank_ == 0)
+  if (s.dem.balanceInterval > 0 && !balanceSlabs(*lig_, comm_) && rank_ == 0 && size_ > 1)
     out_ << "[dem] balanceInterval: the processor grid is not x slabs (set processors \"* 1 1\") "
             "or there is one rank; the slabs stay equal"
          << std::endl;

@@ -52,6 +52,7 @@ class DemDriver {
   const Scene& scene_;
   MPI_Comm comm_;
   int rank_ = 0;
+  int size_ = 1;
   std::ostream& out_;
   std::string outDir_;
   std::unique_ptr<LiggghtsSession> lig_;

@@ -22,6 +22,10 @@ rest feels about its buoyancy, less the part of cells above the liquid).
 With --np N the case runs on N ranks (OpenFOAM simple decomposition along x; 5 cells on 2 ranks
 split 3 + 2 while LIGGGHTS halves the box, so some particles' cells are on the other rank than
 their DEM owner): same checks, plus that such particles occurred.
+With --rebalance S (and --np N) the DEM's x slabs are re-balanced by particles every S s
+(system/demDict balanceInterval, `processors * 1 1` in the DEM script) and the cloud fills only the
+box's first three lattice columns, so that the slabs move away from the fluid's: same checks, plus
+that the run re-balanced and kept every particle.
 """
 
 import argparse
@@ -45,6 +49,8 @@ def main():
     ap.add_argument("--end", type=float, default=0.4)
     ap.add_argument("--tol-force", type=float, default=1e-10)
     ap.add_argument("--tol-volume", type=float, default=1e-9)
+    ap.add_argument("--rebalance", type=float, default=0.0,
+                    help="demDict balanceInterval (s) with x slabs; 0: LIGGGHTS' own grid")
     cc.add_parallel_args(ap)
     cc.add_fluid_response_arg(ap)
     a = ap.parse_args()
@@ -55,14 +61,17 @@ def main():
     rnd = random.Random(4242)
     atoms = []
     for j in range(14):
-        for i in range(4):
+        for i in range(3 if a.rebalance > 0 else 4):
             for k in range(4):
                 atoms.append((0.0045 + 0.007 * i + rnd.uniform(-5e-4, 5e-4),
                               0.045 + 0.003 * j + rnd.uniform(-3e-4, 3e-4),
                               0.0045 + 0.007 * k + rnd.uniform(-5e-4, 5e-4)))
     Lx, Ly, Lz = box.L
     dem_box = cc.Box((Lx, 0.09, Lz), (1, 1, 1))
-    dem = cc.liggghts_header(dem_box, dt_dem, skin=0.25 * d) + f"""fix wylo all wall/gran model hertz tangential history primitive type 1 yplane 0.0
+    header = cc.liggghts_header(dem_box, dt_dem, skin=0.25 * d)
+    if a.rebalance > 0:
+        header = header.replace("region domain", "processors * 1 1\nregion domain", 1)
+    dem = header + f"""fix wylo all wall/gran model hertz tangential history primitive type 1 yplane 0.0
 fix wxlo all wall/gran model hertz tangential history primitive type 1 xplane 0.0
 fix wxhi all wall/gran model hertz tangential history primitive type 1 xplane {Lx!r}
 fix wzlo all wall/gran model hertz tangential history primitive type 1 zplane 0.0
@@ -81,7 +90,12 @@ voidfractionMin 0.9;
     case = os.path.join(a.workdir, "case")
     cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=1e-6,
                   liquid_height=0.04, open_top=True)
-    cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec, decomposepar=a.decomposepar)
+    if a.rebalance > 0:
+        with open(os.path.join(case, "system", "demDict"), "w") as f:
+            f.write("FoamFile { version 2.0; format ascii; class dictionary; object demDict; }\n"
+                    f"balanceInterval {a.rebalance!r};\n")
+    log = cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec,
+                 decomposepar=a.decomposepar)
 
     rows = cc.read_exchange_log(case)
     worst_f = max(r["actionReaction"] for r in rows)
@@ -111,6 +125,11 @@ voidfractionMin 0.9;
         ok &= cc.check(remote > 0, f"{a.np} ranks: particles whose fluid cell is on another rank "
                        f"than their DEM owner went through the point-to-point exchange (up to "
                        f"{int(remote)} per exchange)")
+    if a.rebalance > 0:
+        ok &= cc.check("re-balanced by particles" in log and
+                       int(last["particles"]) == len(atoms),
+                       f"DEM slabs re-balanced every {a.rebalance:g} s, all {len(atoms)} particles "
+                       f"kept ({int(last['particles'])} at the end)")
     ok &= cc.check(last["forceScale"] >= 0.9 * buoyancy,
                    "fluid forces not trivially zero (sum |F_i| >= 0.9 x the cloud's buoyancy)")
     sys.exit(0 if ok else 1)
