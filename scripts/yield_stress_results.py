@@ -374,11 +374,13 @@ def main():
     if not a.skip_beds:
         summary["closures"] = bed_sphere_checks(work, build, summary.get("closures", {}))
     if not a.skip_mixtures:
+        # The paper-window runs (stage 4) are kept: they are not rerun here.
         summary["paper_faithful"] = {
             "tier": "quick", "variants": {k: v for k, v in VARIANTS.items()},
             "paper": {"back_wall_surface_H": {"HB&P": [0.997, 0.894]},
                       "front_order": "HB > HB&P > P"},
-            "runs": mixtures(work)}
+            "runs": mixtures(work),
+            **{k: v for k, v in summary.get("paper_faithful", {}).items() if k == "paper_window"}}
         with open(os.path.join(out, "variants.csv"), "w", newline="") as f:
             w = csv.writer(f)
             keys = ["granular_front_m", "grain_pe_released_J", "liquid_front_m",
