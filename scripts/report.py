@@ -326,8 +326,13 @@ def locked(s):
     packing = ys.get("packing", {}).get("HB&P", {})
     dense, loose = packing.get("0.6056:0.1"), packing.get("0.56:0.7")
     if dense and loose:
-        note += (f"; the evidence supports the verified drag: a loose HB&P sample runs "
-                 f"{100 * (loose['granular_front_m'] / dense['granular_front_m'] - 1):.0f} % "
+        def share(o):
+            return o["grain_pe_released_J"] / o["grain_pe_initial_J"]
+
+        note += (f"; the evidence supports the verified drag: a loose HB&P sample (fraction "
+                 f"{loose['settled_sample_fraction']:.3f}) releases "
+                 f"{share(loose) / share(dense):.1f} times the dense one's share of its energy and "
+                 f"runs {100 * (loose['granular_front_m'] / dense['granular_front_m'] - 1):.0f} % "
                  "farther, so the dense packing, not the drag, holds the column")
     return note
 
