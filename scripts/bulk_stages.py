@@ -2,7 +2,7 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--estimators wls,median] [--field-mean wls] [--reference runs/reference]
+          [--estimators wls,median] [--field-mean wls] [--window-span 5] [--reference runs/reference]
           [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
 
@@ -17,7 +17,8 @@ B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
 scripts/mixture_lambdas.py) and run again (`./Allrun`); stage C: stage A's case with the drift
 fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
 docs/calibration.md "Stage C"); stage C_t: the same with the drift fields of every extraction
-window, lambda(x, y, t), linear in time (`--fields --per-window --field-mean M`). Against the
+window, lambda(x, y, t), linear in time (`--fields --per-window --window-span K --field-mean M`:
+each window's fields pooled over the K windows centred on it, default 5). Against the
 reference's granular front at the end (its postProcessing/dem/timeSeries.csv): the bulk front
 (postProcessing/liquid front_bed_m), its error, and the bulk solver's CPU time
 (log.mixflowBulkFoam). Writes OUT.
@@ -69,7 +70,12 @@ def drift_stage(rec, key, options, case_a, ref, ref_front, a):
     rec[key + "_calibration"] = cal.strip().splitlines()[-12:]
     with open(os.path.join(case, "constant", "bulkProperties.calibration.json")) as f:
         rec[key + "_drifts"] = json.load(f)
-    run(["./Allrun", "1"], cwd=case)
+    if run(["./Allrun", "1"], cwd=case, fatal=False) is None:  # recorded with its last time
+        t, front = last(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"),
+                        "front_bed_m")
+        rec[key] = {"error": f"mixflowBulkFoam failed at t = {t:g} s (front {front:.3f} m; "
+                             f"{os.path.join(case, 'log.mixflowBulkFoam')})"}
+        return
     rec[key] = result(case, ref_front)
 
 
@@ -102,6 +108,10 @@ def main():
                     "lets W&P's lambda_w reach the range limit and the run diverge)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
+    ap.add_argument("--window-span", type=int, default=5,
+                    help="stage C_t: calibrate_drifts.py --window-span (each window's fields from "
+                    "the K windows centred on it; 1, a window's own samples alone, lets W&P's "
+                    "lambda_w reach 40 in a bin and the run diverge at 0.75 s)")
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "bulk-stages"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model", "stages.json"))
     a = ap.parse_args()
@@ -139,7 +149,8 @@ def main():
         # per window.
         fields = ["--fields", "--field-mean", a.field_mean]
         drift_stage(rec, "C", fields, case_a, ref, ref_front, a)
-        drift_stage(rec, "C_t", fields + ["--per-window"], case_a, ref, ref_front, a)
+        drift_stage(rec, "C_t", fields + ["--per-window", "--window-span", str(a.window_span)],
+                    case_a, ref, ref_front, a)
         print(f"{scene}: CFD-DEM front {ref_front:.3f} m; stage A0 {stage_line(rec, 'A0')}, "
               f"A {stage_line(rec, 'A')}; stage B "
               + ", ".join(f"{est} {stage_line(rec, k)}" for est, k in STAGE_B.items() if k in rec)

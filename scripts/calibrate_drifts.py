@@ -6,7 +6,7 @@ constant/bulkProperties `drifts` block.
 usage: /usr/bin/python3 scripts/calibrate_drifts.py SOURCE [--target CASE] [--estimator wls|median]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
-           [--fields [--per-window]] [--field-mean wls|ratio]
+           [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
 
 SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflowExtract) or an
 .h5 file. The bins used (the same for both estimators) are, in the windows inside [T0, T1]: the
@@ -26,7 +26,8 @@ by the samples' weight w (--weights); the constant estimate where the bin has no
 the cell lies outside the grid; clipped into the bulk model's range (the count is printed).
 --per-window (with --fields) writes instead one set per extraction window inside --windows,
 CASE/constant/drifts/<t>/lambdaU, lambdaW, lambdaP (t the window's centre, 6 digits), each cell
-from its bin's samples of that window alone (the constant estimate where the bin has none then),
+from its bin's samples of that window alone, or with --window-span K of the K windows centred on it
+(the constant estimate where the bin has none then),
 and `drifts { fields on; timeVarying on; }`: the bulk model takes them at its time, linear in time
 between windows (bulkProperties drifts.interpolation). The counts printed are summed over the
 windows.
@@ -324,7 +325,7 @@ def cell_centres(target):
 
 def drift_fields(res, centres, lo, hi, how, window=None):
     """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping; with WINDOW
-    (an index of the file's windows) from that window's samples alone."""
+    (indices of the file's windows) from those windows' samples alone."""
     with h5py.File(res["h5"], "r") as h:
         xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
     ix = np.searchsorted(xe, centres[:, 0], side="right") - 1
@@ -334,7 +335,7 @@ def drift_fields(res, centres, lo, hi, how, window=None):
     for q, s in res["_samples"].items():
         if window is not None:
             mask = np.zeros_like(s["mask"])
-            mask[window] = s["mask"][window]
+            mask[list(window)] = s["mask"][list(window)]
             s = dict(s, mask=mask)
         means = bin_means(s, how)
         v = np.full(len(centres), np.nan)
@@ -390,10 +391,11 @@ def window_name(t0, t1):
     return f"{(t0 + t1) / 2:.6g}"
 
 
-def series_fields(res, centres, lo, hi, field_mean, source, target):
-    """--per-window: per window inside --windows the drift fields of its samples alone, as
-    (path, text) under TARGET/constant/drifts/<centre>/, and per drift their bookkeeping (counts
-    summed over the windows, each window's own under "windows")."""
+def series_fields(res, centres, lo, hi, field_mean, source, target, span=1):
+    """--per-window: per window inside --windows the drift fields of the samples of the SPAN
+    windows centred on it (fewer at the ends), as (path, text) under
+    TARGET/constant/drifts/<centre>/, and per drift their bookkeeping (counts summed over the
+    windows, each window's own under "windows")."""
     names = [window_name(t0, t1) for _, t0, t1 in res["_windows"]]
     if len(set(names)) != len(names):
         raise InputError(f"{res['h5']} /windows: two windows share the centre "
@@ -401,13 +403,17 @@ def series_fields(res, centres, lo, hi, field_mean, source, target):
                          "(--per-window names each window's fields by its centre); nothing "
                          "written")
     files, summary = [], {}
-    for name, (i, t0, t1) in zip(names, res["_windows"]):
-        for q, f in drift_fields(res, centres, lo, hi, field_mean, window=i).items():
+    wins, half = res["_windows"], span // 2
+    for k, (name, (i, t0, t1)) in enumerate(zip(names, wins)):
+        pool = [w[0] for w in wins[max(0, k - half):k + half + 1]]
+        pooled = (f", pooled over windows {wins[max(0, k - half)][1]:g}-"
+                  f"{wins[min(len(wins) - 1, k + half)][2]:g} s" if span > 1 else "")
+        for q, f in drift_fields(res, centres, lo, hi, field_mean, window=pool).items():
             key = DRIFTS[q][0]
             rel = os.path.join("constant", "drifts", name)
             files.append((os.path.join(target, rel, key),
                           field_text(key, f["values"], f"{source}, field mean {field_mean}, "
-                                     f"window {t0:g}-{t1:g} s", field_mean, rel)))
+                                     f"window {t0:g}-{t1:g} s{pooled}", field_mean, rel)))
             r = summary.setdefault(key, {"windows": [], "min": f["min"], "max": f["max"],
                                          "file": os.path.join(target, "constant", "drifts")})
             r["windows"].append(dict({k: v for k, v in f.items() if k != "values"}, time=name,
@@ -436,7 +442,7 @@ def write_series(target, files):
 
 
 def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="wls",
-                 per_window=False):
+                 per_window=False, window_span=1):
     """Checks TARGET and the drifts against the bulk model's range, then writes
     TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
     lambdaP; with PER_WINDOW instead one set per window, constant/drifts/<centre>/); returns
@@ -473,8 +479,8 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
                solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
     if per_window:
         series, res["fields"] = series_fields(private, centres, lo, DRIFT_MAX, field_mean, source,
-                                              target)
-        res["field_mean"] = field_mean
+                                              target, window_span)
+        res["field_mean"], res["window_span"] = field_mean, window_span
     elif fields:
         fs = drift_fields(private, centres, lo, DRIFT_MAX, field_mean)
         res["fields"] = {}
@@ -515,6 +521,9 @@ def main(argv=None):
                     "--windows, constant/drifts/<centre>/lambdaU, lambdaW, lambdaP, from that "
                     "window's samples alone, and drifts { timeVarying on; } (the bulk model "
                     "takes them at its time, docs/bulk_model.md)")
+    ap.add_argument("--window-span", type=int, default=1,
+                    help="--per-window: each window's fields from the samples of the SPAN "
+                    "windows centred on it (odd, >= 1; default 1: its own alone)")
     ap.add_argument("--field-mean", default="wls",
                     help="--fields: per bin the wls slope of its windows (wls, default: the "
                     "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge) "
@@ -525,6 +534,10 @@ def main(argv=None):
             raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
         if a.per_window and not a.fields:
             raise InputError("--per-window: needs --fields (the windows' fields are drift fields)")
+        if a.window_span < 1 or a.window_span % 2 == 0:
+            raise InputError(f"--window-span {a.window_span}: allowed an odd integer >= 1")
+        if a.window_span > 1 and not a.per_window:
+            raise InputError("--window-span: applies to --per-window only")
         if a.field_mean not in FIELD_MEAN_TEXT:
             raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(sorted(FIELD_MEAN_TEXT))}")
         if a.target:
@@ -534,7 +547,7 @@ def main(argv=None):
         print(table(res))
         if a.target:
             for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,
-                                  a.per_window):
+                                  a.per_window, a.window_span):
                 print(f"wrote {p}")
             if a.fields:
                 with open(a.json or bulkprops.path(a.target) + ".calibration.json") as f:

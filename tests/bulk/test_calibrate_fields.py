@@ -4,7 +4,8 @@ the ratios of the bin holding its centre (recomputed here from the extraction), 
 estimate where the bin has no selected window or the cell lies outside the grid, clipped into the
 bulk model's range with the count reported; bulkProperties gets `fields on;` and the source.
 --per-window: one set per window inside --windows in constant/drifts/<centre>/, every cell of every
-window equal to its bin's value recomputed from that window's samples alone (the constant, the
+window equal to its bin's value recomputed from that window's samples alone (with --window-span 3
+from the 3 windows centred on it) (the constant, the
 clip and their counts as above, per window); bulkProperties gets `timeVarying on;`, which a later
 fixed-field calibration sets off.
 
@@ -183,6 +184,22 @@ def run_per_window(check, work, case, h5, blockmesh):
                        text=True)
     check(r.returncode == 2 and "--per-window: needs --fields" in r.stderr,
           f"--per-window without --fields: exit {r.returncode}; {r.stderr.strip()}")
+    # --window-span 3: each window's cells from the samples of the 3 windows centred on it (2 at
+    # the ends), i.e. the bin values recomputed over those windows together.
+    label = "window span 3"
+    _, _, j = calibrate(check, case, target, label,
+                        ["--windows", "0:0.06", "--per-window", "--window-span", "3"])
+    consts = {q: j["drifts"][q]["value"] for q in cd.DRIFTS}
+    for name, pooled in (("0.01", "0:0.04"), ("0.03", "0:0.06"), ("0.05", "0.02:0.06")):
+        want, _ = expected(h5, consts, pooled, how)
+        for q, (key, *_) in cd.DRIFTS.items():
+            check_cells(check, f"{label} {name} s (windows {pooled} s)", key,
+                        os.path.join(series, name, key), want[q], lo)
+    for bad in ("2", "0"):
+        r = subprocess.run(cmd[:3] + ["--target", target, "--fields", "--per-window",
+                                      "--window-span", bad], capture_output=True, text=True)
+        check(r.returncode == 2 and f"--window-span {bad}: allowed an odd integer >= 1" in r.stderr,
+              f"--window-span {bad}: exit {r.returncode}; {r.stderr.strip()}")
 
 
 def run(check, work, case, h5, blockmesh, label, windows, alpha, how):

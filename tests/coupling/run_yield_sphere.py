@@ -12,18 +12,23 @@ Y > Y_crit = 0.143 (tests/reference/bingham_sphere.csv).
 
 Scenarios (--liquid):
   bingham   the paper's Bingham liquid (rho 1400, mu_p 4 Pa s, tau_y 2.1 Pa, cap 1e4 Pa s),
-            Y = 0.024: the grain settles. Reference speed V: the published creeping-flow Bingham
-            drag F = 3 pi mu_p d V (1 + k Bi) (Ansley & Smith's k = 7 pi / 24, Bi = tau_y d /
-            (mu_p V)) times the Newtonian law's own finite-Re factor Cd Re / 24 (Di Felice, at
-            Re = rho V d / mu_p), so that the check isolates the yield-stress part of the drag:
-            F = (rho_p - rho_f) g pi d^3 / 6. Pass: within 10 % of V.
+            Y = 0.024, and the same liquid with tau_y raised to Y = 0.05 and 0.08: the grain
+            settles, at Bingham numbers Bi = tau_y d / (mu_p V) of about 0.2, 0.5 and 1.0.
+            Reference speed V: the published creeping-flow Bingham drag F = 3 pi mu_p d V
+            (1 + k Bi) (Ansley & Smith's k = 7 pi / 24) times the Newtonian law's own finite-Re
+            factor Cd Re / 24 (Di Felice, at Re = rho V d / mu_p), so that the check isolates the
+            yield-stress part of the drag: F = (rho_p - rho_f) g pi d^3 / 6. Pass: within 10 % of
+            V for the paper's liquid, within 15 % at the raised yield stresses (the correlation's
+            own scatter grows with Bi: its plastic limit lies 21 % below the Beris onset,
+            tests/reference/bingham_sphere.csv).
   hb        the paper's Herschel-Bulkley liquid (rho 1000, K 4.279 Pa s^n, n 0.479, tau_y
             30.002 Pa, cap 1e4 Pa s), Y = 0.255 > Y_crit: held. Pass: speed below 1e-3 of the
             speed the same grain has in a Newtonian liquid of the HB law's viscosity at V/d
             (i.e. without the yield stress).
   threshold Bingham liquids (rho 1400, mu_p 4 Pa s) at Y = 0.12 and 0.20, either side of Beris'
             0.143: the first settles (speed >= 0.1 of the tau_y = 0 speed), the second is held
-            (below 1e-3 of it).
+            (below 1e-3 of it). The speed at Y = 0.12 (Bi about 2.7) is also held to the
+            Ansley & Smith speed within 15 %, as in bingham.
   powerlaw  the paper's HB liquid without its yield stress (rho 1000, K 4.279 Pa s^n, n 0.479,
             cap 1e4 Pa s). Reference speed: the creeping power-law sphere drag F = 3 pi K V^n
             d^(2-n) X(n) (tests/reference/powerlaw_sphere_drag_correction.csv, X interpolated in n)
@@ -146,16 +151,24 @@ def main():
     ok = True
     closures = [a.closure] + (["resolved"] if a.also_resolved and a.closure != "resolved" else [])
     if a.liquid == "bingham":
-        rho, mu, tau = 1400.0, 4.0, 2.1
-        vref = bingham_reference(rho, mu, tau, kx)
-        print(f"Bingham: Y = {yield_number(rho, tau):.4f} (< {ycrit}: settles); reference speed "
-              f"{vref:.6g} m/s (tau_y = 0: {newtonian_speed(rho, mu):.6g} m/s)")
-        for cl in closures:
-            v = settle(a, "bingham", rho, tau, mu, 1.0, cl)
-            if cl == a.closure:
-                ok &= cc.check(abs(v - vref) <= 0.1 * vref,
-                               f"{cl}: {v:.6g} m/s vs {vref:.6g} m/s "
-                               f"({100 * (v / vref - 1):+.1f} %, within 10 %)")
+        rho, mu = 1400.0, 4.0
+        # (name, tau_y, tolerance): the paper's liquid, then tau_y raised to Y = 0.05 and 0.08.
+        liquids = [("bingham", 2.1, 0.10)] + [
+            (f"bingham_Y{y:g}", y * G * D * (RHO_P - rho) / 3, 0.15) for y in (0.05, 0.08)]
+        for name, tau, tol in liquids:
+            vref = bingham_reference(rho, mu, tau, kx)
+            print(f"{name}: Y = {yield_number(rho, tau):.4f} (< {ycrit}: settles); reference "
+                  f"speed {vref:.6g} m/s, Bi {tau * D / (mu * vref):.3g} (tau_y = 0: "
+                  f"{newtonian_speed(rho, mu):.6g} m/s)")
+            for cl in closures:
+                v = settle(a, name, rho, tau, mu, 1.0, cl)
+                err = v / vref - 1
+                print(f"RESULT bingham_sphere name={name} closure={cl} Y={yield_number(rho, tau)!r} "
+                      f"Bi={tau * D / (mu * vref)!r} measured={v!r} reference={vref!r} "
+                      f"error={err!r} tolerance={tol!r}", flush=True)
+                if cl == a.closure:
+                    ok &= cc.check(abs(err) <= tol, f"{cl}, {name}: {v:.6g} m/s vs {vref:.6g} m/s "
+                                   f"({100 * err:+.1f} %, within {100 * tol:g} %)")
     elif a.liquid == "hb":
         rho, k, n, tau = 1000.0, 4.279, 0.479, 30.002
         # Without the yield stress: the power-law viscosity at V/d, iterated to its fixed point.
@@ -208,6 +221,12 @@ def main():
                   f"tau_y = 0 speed {v0:.6g} m/s")
             for cl in closures:
                 v = settle(a, f"Y{y:g}", rho, tau, mu, 1.0, cl)
+                if y < ycrit:
+                    vref = bingham_reference(rho, mu, tau, kx)
+                    err = v / vref - 1
+                    print(f"RESULT bingham_sphere name=bingham_Y{y:g} closure={cl} Y={y!r} "
+                          f"Bi={tau * D / (mu * vref)!r} measured={v!r} reference={vref!r} "
+                          f"error={err!r} tolerance=0.15", flush=True)
                 if cl != a.closure:
                     continue
                 if y > ycrit:
@@ -216,6 +235,8 @@ def main():
                 else:
                     ok &= cc.check(v >= 0.1 * v0, f"{cl}, Y = {y}: settles at {v:.4g} m/s "
                                    f"(>= 0.1 x {v0:.4g})")
+                    ok &= cc.check(abs(err) <= 0.15, f"{cl}, Y = {y}: {v:.4g} m/s vs Ansley & "
+                                   f"Smith {vref:.4g} m/s ({100 * err:+.1f} %, within 15 %)")
     print("PASS" if ok else "FAIL")
     sys.exit(0 if ok else 1)
 
