@@ -1,5 +1,6 @@
 #include "SettledSample.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -45,7 +46,13 @@ std::string settleInputs(const Scene& s) {
   out << kSettleVersion << '\n'
       << kDataFileName << ": " << fill.centres.size() << " particles, fnv1a " << fingerprintOf(data)
       << '\n';
-  addLines(out, sceneSetupCommands(st, kDataFileName, dt));
+  // The processor grid is left out: how the ranks split the box is not part of the sample, which
+  // serves any rank count and decomposition.
+  std::vector<std::string> setup = sceneSetupCommands(st, kDataFileName, dt);
+  setup.erase(std::remove_if(setup.begin(), setup.end(),
+                             [](const std::string& l) { return l.rfind("processors", 0) == 0; }),
+              setup.end());
+  addLines(out, setup);
   out << "# settling materials\n";
   addLines(out, materialCommands(st.particles, st.dem.youngModulusFactor, st.settle.friction, 0.0));
   addLines(out, settleGravityCommands(st));  // nothing for full gravity: older samples still match

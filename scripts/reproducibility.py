@@ -10,9 +10,10 @@ settled sample of the first:
   serial      ./Allrun 1 (settles; the reference)
   repeat      ./Allrun 1 again: must be identical (determinism)
   perturbed   ./Allrun 1 with the liquid density times (1 + 1e-12): a round-off-sized change
-  ranks       ./Allrun RANKS (decomposed fluid and DEM)
-  balanced    ./Allrun RANKS with the DEM's x slabs re-balanced by particles every 0.05 s (demDict
-              balanceInterval 0.05, processors "* 1 1"): the DEM apart from the fluid's slabs
+  ranks       ./Allrun RANKS with LIGGGHTS' equal slabs matched to the fluid's (demDict
+              balanceInterval 0, processors "* * *")
+  balanced    ./Allrun RANKS with the default decomposition: the DEM's x slabs re-balanced by
+              particles every 0.05 s, apart from the fluid's slabs
 Compared with the serial run at every common output time: the granular front (postProcessing/dem
 front_x_m), the grains' translational kinetic energy, the liquid front (postProcessing/liquid
 front_bed_m): the largest difference over the run, and at the end, absolute and relative to the
@@ -40,7 +41,7 @@ QUANTITIES = {"granular_front_m": ("dem", "front_x_m"),
               "liquid_front_m": ("liquid", "front_bed_m")}
 
 
-BALANCED = {"balanceInterval": "0.05", "processors": '"* 1 1"'}
+EQUAL_SLABS = {"balanceInterval": "0", "processors": '"* * *"'}
 
 
 def make_case(work, scene, label, density_factor=1.0, dem=None):
@@ -114,9 +115,9 @@ def main():
         settled = os.path.join(serial, "dem")
         runs = {"repeat": (make_case(a.work, scene, "repeat"), 1),
                 "perturbed": (make_case(a.work, scene, "perturbed", 1 + PERTURBATION), 1),
-                f"ranks{a.ranks}": (make_case(a.work, scene, f"ranks{a.ranks}"), a.ranks),
-                f"balanced{a.ranks}": (make_case(a.work, scene, f"balanced{a.ranks}",
-                                                 dem=BALANCED), a.ranks)}
+                f"ranks{a.ranks}": (make_case(a.work, scene, f"ranks{a.ranks}",
+                                              dem=EQUAL_SLABS), a.ranks),
+                f"balanced{a.ranks}": (make_case(a.work, scene, f"balanced{a.ranks}"), a.ranks)}
         summary["scenes"][scene] = {}
         for label, (case, ranks) in runs.items():
             allrun(case, ranks, settled)
