@@ -30,6 +30,7 @@ CoupledResumeState CoupledResumeState::read(const std::string& caseDir) {
   s.deletedTop = d.integer("deletedTop", 0, 2000000000);
   s.lost = d.integer("lost", 0, 2000000000);
   s.profileDone = d.switchOr("profileDone", false);
+  if (d.has("slabSplits")) s.slabSplits = d.scalars("slabSplits", Range::closed(0, 1));
   if (!fs::exists(fs::path(caseDir) / s.restartFile))
     throw InputError(file + ": entry 'restartFile': " + s.restartFile + " does not exist");
   return s;
@@ -44,7 +45,10 @@ void CoupledResumeState::write(const std::string& caseDir) const {
       << "timeName \"" << timeName << "\";\ntime " << formatNumber(time, 17) << ";\nstep " << step
       << ";\nlastSampleStep " << lastSampleStep << ";\ndeletedOutlet " << deletedOutlet
       << ";\ndeletedTop " << deletedTop << ";\nlost " << lost << ";\nprofileDone "
-      << (profileDone ? "yes" : "no") << ";\n";
+      << (profileDone ? "yes" : "no") << ";\nslabSplits (";
+    for (size_t i = 0; i < slabSplits.size(); ++i)
+      f << (i ? " " : "") << formatNumber(slabSplits[i], 17);
+    f << ");\n";
   }
   fs::rename(file + ".tmp", file);
 }

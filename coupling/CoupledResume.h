@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace mixflow::coupling {
 
@@ -24,6 +25,9 @@ struct CoupledResumeState {
   long lastSampleStep = 0;  // step of MixtureMonitor's last granular row (its sampling chain)
   long deletedOutlet = 0, deletedTop = 0, lost = 0;  // MixtureMonitor's counts so far
   bool profileDone = false;                          // the u(y) profile was written
+  // The DEM's x-slab boundaries at the write (dem/SlabBalance.h): the resumed run's decomposition
+  // until its next re-balance, as the uninterrupted run's. Empty: the script's grid.
+  std::vector<double> slabSplits;
 
   static std::string path(const std::string& caseDir);  // <case>/dem/coupled.resume.state
   // Throws InputError naming the file if it is missing or malformed.

@@ -12,6 +12,7 @@
 #include "CoupledResume.h"
 #include "CouplingProperties.h"
 #include "LiggghtsSession.h"
+#include "SlabBalance.h"
 #include "Time.H"
 
 namespace mixflow::coupling {
@@ -97,6 +98,7 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
   // Resuming: the particles come from the last field write's restart instead of the script's
   // read_restart (the settled sample); every other line (contacts, walls) is the script's.
   std::string resumeRestart;
+  std::vector<double> resumeSplits;
   if (resume) {
     try {
       const CoupledResumeState st = CoupledResumeState::read(caseDir);
@@ -109,6 +111,7 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
               " s: set startFrom latestTime and remove the time directories after " + st.timeName +
               " (scripts/ResumeFunctions, resumeMixtureCase, does both)");
       resumeRestart = caseDir + "/" + st.restartFile;
+      resumeSplits = st.slabSplits;
       Foam::Info << "Coupling: resuming at t = " << st.timeName.c_str() << " s from "
                  << st.restartFile.c_str() << Foam::endl;
     } catch (const InputError& e) {
@@ -141,15 +144,32 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
           "scene's system/in.liggghts)");
 
   d.link = std::make_unique<DemLink>(*d.session, mode);
-  // The external force array is not initialised by LIGGGHTS: zero it before the setup run.
-  std::vector<ParticleState> particles;
-  std::vector<std::int64_t> tags;
-  d.link->pull(particles, tags);
+  // The external force array is not initialised by LIGGGHTS: zero it before a setup run.
   // Resuming with the implicit drag: the restart's drag state is kept for the first interval.
-  if (d.link->mode() == DemLink::DragIntegration::held)
-    d.link->push(std::vector<Vec3>(particles.size()));
-  else if (!(resume && d.link->adoptRestoredState()))
-    d.link->pushImplicit(std::vector<AppliedDrag>(particles.size()));
+  const auto startDrag = [&] {
+    std::vector<ParticleState> particles;
+    std::vector<std::int64_t> tags;
+    d.link->pull(particles, tags);
+    if (d.link->mode() == DemLink::DragIntegration::held)
+      d.link->push(std::vector<Vec3>(particles.size()));
+    else if (!(resume && d.link->adoptRestoredState()))
+      d.link->pushImplicit(std::vector<AppliedDrag>(particles.size()));
+  };
+  startDrag();
+  if (resume) {
+    // The stopped run's slabs (re-balanced, demDict balanceInterval) and its atom order
+    // (LiggghtsSession::writeRestart), so the resumed run goes on with the uninterrupted run's
+    // arrays. First a setup run: the pair style makes its contact-history fix there, reading the
+    // restart's per-atom data, which moving the atoms before would scramble.
+    d.session->command("run 0");
+    if (!resumeSplits.empty() && !dem::setSlabSplits(*d.session, resumeSplits) &&
+        Foam::Pstream::parRun())
+      Foam::Info << "Coupling: the stopped run's DEM slabs (" << int(resumeSplits.size()) - 1
+                 << ") do not fit this run's processor grid; it starts from the script's"
+                 << Foam::endl;
+    d.session->orderByTag();
+    startDrag();
+  }
   d.session->command("run 0");
   d.session->invalidateSetup();
 

@@ -182,12 +182,21 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   log_ = std::make_unique<ExchangeLog>(runTime, props_->exchangeEvery, props_->logEvery, modelNames,
                                        resume_);
   balanceInterval_ = demBalanceInterval(std::string(runTime.globalPath()) + "/system/demDict");
+  // Resumed: the stopped run's last re-balance (its last interval ended at the start time).
+  if (resume_) lastBalance_ = balanceIndex(runTime.value());
   if (balanceInterval_ > 0)
     Foam::Info << "Coupling: the DEM's x slabs are re-balanced by particles every "
                << balanceInterval_
                << " s (demDict balanceInterval); the exchange routes each "
                   "particle to the ranks of its cells"
                << Foam::endl;
+}
+
+// The index of the last multiple of balanceInterval up to the interval ending at t (half an
+// interval of slack for the rounded times of a resumed run).
+long FoamCoupling::balanceIndex(double t) const {
+  if (balanceInterval_ <= 0) return -1;
+  return static_cast<long>(std::floor((t + 0.5 * exchangeInterval_) / balanceInterval_));
 }
 
 // demDict's balanceInterval, or 0 without a demDict (the coupling tests' cases have none).
@@ -255,14 +264,16 @@ void FoamCoupling::evolve() {
   clock_.time(StageClock::dem, [&] {
     // Between intervals the per-particle drag state lives in LIGGGHTS' per-atom arrays, which
     // migrate with the particles, so the slabs can move here as at any re-neighbouring.
-    const double t = mesh_.time().value();
-    if (balanceInterval_ > 0 && t >= nextBalance_ - 0.5 * exchangeInterval_) {
-      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && nextBalance_ == 0 && Foam::Pstream::parRun())
+    // Re-balances fall on multiples of balanceInterval in simulated time, so a resumed run
+    // (which starts from the stopped run's slabs) re-balances when the uninterrupted run did.
+    const long k = balanceIndex(mesh_.time().value());
+    if (balanceInterval_ > 0 && k > lastBalance_) {
+      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && lastBalance_ < 0 && Foam::Pstream::parRun())
         Foam::Info
             << "Coupling: balanceInterval: the DEM's processor grid is not x slabs (set "
                "demDict processors \"* 1 1\") or there is one rank; the slabs stay as they are"
             << Foam::endl;
-      nextBalance_ = t + balanceInterval_;
+      lastBalance_ = k;
     }
     dem_->run(props_->exchangeEvery);
   });

@@ -8,6 +8,7 @@
 #include "DemDriver.h"
 #include "Dictionary.h"
 #include "SceneProperties.h"
+#include "SlabBalance.h"
 
 namespace mixflow::coupling {
 
@@ -68,6 +69,7 @@ void MixtureMonitor::afterWrite(const std::string& timeName) {
   st.deletedTop = rep_.deletedTop;
   st.lost = rep_.lost;
   st.profileDone = profileDone_;
+  st.slabSplits = dem::slabSplits(lig_);
   st.write(scene_.caseDir);
 }
 

@@ -2,15 +2,21 @@
 
 // LIGGGHTS headers
 #include <atom.h>
+#include <atom_vec.h>
+#include <fix.h>
 #include <input.h>
 #include <lammps.h>
+#include <modify.h>
 #include <timer.h>
 #include <update.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 #include <stdexcept>
+#include <vector>
 
 namespace mixflow::dem {
 
@@ -59,6 +65,43 @@ void LiggghtsSession::commands(const std::vector<std::string>& lines) {
 
 void LiggghtsSession::writeRestart(const std::string& file) {
   command("write_restart " + file);
+  orderByTag();
+}
+
+void LiggghtsSession::storeContactHistory() {
+  // The pair's history fix copies only when the pair computed since its last copy (its own
+  // guard), so a second call, or the next setup's, leaves the stored history alone.
+  LAMMPS_NS::Modify* modify = lmp_->modify;
+  for (int i = 0; i < modify->nfix; ++i)
+    if (std::string(modify->fix[i]->style) == "contacthistory")
+      modify->fix[i]->setup_pre_exchange();
+}
+
+void LiggghtsSession::orderByTag() {
+  storeContactHistory();
+  LAMMPS_NS::Atom* atom = lmp_->atom;
+  const int n = atom->nlocal;
+  // permute[i]: the atom that goes to slot i; the cycles are followed through a spare slot n,
+  // as LAMMPS' own spatial sort does.
+  std::vector<int> permute(n);
+  std::iota(permute.begin(), permute.end(), 0);
+  std::sort(permute.begin(), permute.end(),
+            [&](int a, int b) { return atom->tag[a] < atom->tag[b]; });
+  if (atom->nmax <= n) atom->avec->grow(0);
+  std::vector<int> current(permute.size());
+  std::iota(current.begin(), current.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    if (current[i] == permute[i]) continue;
+    atom->avec->copy(i, n, 0);
+    int empty = i;
+    while (permute[empty] != i) {
+      atom->avec->copy(permute[empty], empty, 0);
+      current[empty] = permute[empty];
+      empty = permute[empty];
+    }
+    atom->avec->copy(n, empty, 0);
+    current[empty] = permute[empty];
+  }
   needSetup_ = true;
 }
 

@@ -39,8 +39,26 @@ bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm) {
     }
   }
   MPI_Bcast(split.data(), slabs + 1, MPI_DOUBLE, 0, comm);
+  return setSlabSplits(lig, split);
+}
+
+std::vector<double> slabSplits(LiggghtsSession& lig) {
+  const LAMMPS_NS::Comm* c = lig.lammps()->comm;
+  const int slabs = c->procgrid[0];
+  if (c->procgrid[1] != 1 || c->procgrid[2] != 1) return {};
+  return std::vector<double>(c->xsplit, c->xsplit + slabs + 1);
+}
+
+bool setSlabSplits(LiggghtsSession& lig, const std::vector<double>& splits) {
+  LAMMPS_NS::LAMMPS* lmp = lig.lammps();
+  LAMMPS_NS::Comm* c = lmp->comm;
+  const int slabs = c->procgrid[0];
+  if (slabs <= 1 || c->procgrid[1] != 1 || c->procgrid[2] != 1 ||
+      splits.size() != static_cast<size_t>(slabs + 1))
+    return false;
+  lig.storeContactHistory();
   c->uniform = 0;
-  for (int i = 0; i <= slabs; ++i) c->xsplit[i] = split[i];
+  for (int i = 0; i <= slabs; ++i) c->xsplit[i] = splits[i];
   lmp->domain->set_local_box();
   LAMMPS_NS::Irregular irregular(lmp);
   irregular.migrate_atoms();

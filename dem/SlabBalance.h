@@ -6,6 +6,8 @@
 
 #include <mpi.h>
 
+#include <vector>
+
 #include "LiggghtsSession.h"
 
 namespace mixflow::dem {
@@ -13,5 +15,12 @@ namespace mixflow::dem {
 // Moves the slab boundaries so that each rank holds about the same number of particles; returns
 // false (nothing changed) when the grid is not x slabs or there is only one rank.
 bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm);
+
+// The slab boundaries as fractions of the box in x (slabs + 1 values from 0 to 1), or empty when
+// the grid is not x slabs: a resumed run sets the stopped run's with setSlabSplits.
+std::vector<double> slabSplits(LiggghtsSession& lig);
+// Sets the boundaries and migrates the atoms (same on every rank); false, nothing changed, when
+// the grid is not x slabs of splits.size() - 1 ranks.
+bool setSlabSplits(LiggghtsSession& lig, const std::vector<double>& splits);
 
 }  // namespace mixflow::dem

@@ -14,13 +14,17 @@ with what a failure after that write leaves (a half-written later time directory
      duplicate (B's own end-time row at 0.05 s, off the granular sampling chain, is cut);
   3. at 0.15 s B agrees with A: grains' potential energy within 1e-4 J, granular and liquid fronts
      within 1e-4 m, grains' kinetic energy within 1 %, and the resumed run says it kept the
-     drag state of the particles' restart (DemLink.h). Measured serially with the default slip
-     drag viscosity: 2.2e-5 J, 1.5e-5 m, 2.6e-6 m, 0.2 % (the first half step's force is
-     recomputed at the restart). Recomputing the first interval's drag from the fluid at the
-     write instead (what a restart without the state gets): 1.9e-4 J, 3.1e-5 m, 2.6e-7 m,
-     0.2 %; the slip closure's coefficient varies as 1 / slip in a held column. Without a full
-     LIGGGHTS setup after write_restart (stale neighbour lists) A itself changed by 3e-3 J and
-     15 % at the write.
+     drag state of the particles' restart (DemLink.h). Measured with the default slip drag
+     viscosity: serially 1.7e-5 J, 1.4e-5 m, 9.2e-6 m, 0.1 %; on 2 ranks with the DEM's slabs
+     re-balanced every 0.05 s 1.7e-5 J, 9.0e-5 m, 4.2e-5 m, 0.8 % (the first half step's force
+     is recomputed at the restart; grains amplify it). The resumed run needs the stopped run's
+     slabs, the atoms in the same order and the contact history stored with the atoms before
+     they move (LiggghtsSession::storeContactHistory): from the script's equal slabs instead,
+     7e-3 J and 1.1e-3 m; without the stored history, 7.7e-5 J and 5.8e-5 m. Recomputing the
+     first interval's drag from the fluid at the write instead (what a restart without the
+     state gets): 1.9e-4 J, 3.1e-5 m, 2.6e-7 m, 0.2 %; the slip closure's coefficient varies
+     as 1 / slip in a held column. Without a full LIGGGHTS setup after write_restart (stale
+     neighbour lists) A itself changed by 3e-3 J and 15 % at the write.
   4. resuming a case that wrote no field is refused, naming dem/coupled.resume.state.
 """
 import csv
