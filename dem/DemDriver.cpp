@@ -8,6 +8,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "ContactTimes.h"
 #include "Dictionary.h"
@@ -249,7 +250,10 @@ void DemDriver::writeResumeState(const CollapseReport& rep, bool profileDone) {
       << "restartFile \"" << file << "\";\ntime " << fmt(simTime(), 17) << ";\nstep "
       << lig_->step() << ";\ndeletedOutlet " << rep.deletedOutlet << ";\ndeletedTop "
       << rep.deletedTop << ";\nlost " << rep.lost << ";\nprofileDone "
-      << (profileDone ? "yes" : "no") << ";\nsettled\n";
+      << (profileDone ? "yes" : "no") << ";\nlastBalance " << lastBalance_ << ";\nslabSplits (";
+    const std::vector<double> splits = slabSplits(*lig_);
+    for (size_t i = 0; i < splits.size(); ++i) f << (i ? " " : "") << fmt(splits[i], 17);
+    f << ");\nsettled\n";
     writeSettledDict(f, settled_);
   }
   fs::rename(tmp, dir / "resume.state");
@@ -273,6 +277,15 @@ CollapseReport DemDriver::resume(SettleReport& settled) {
     out_ << "[dem] resuming at t = " << fmt(t, 6) << " s from " << restartFile << std::endl;
   lig_->commands(resumeSetupCommands(scene_, restartFile, dt_));
   step0_ = 0;  // the restart carries the step count since the gate opened
+  // The stopped run's slabs, re-balance count and atom order, so the resumed run goes on as the
+  // uninterrupted one (as mixflowCoupled -resume does, coupling/DemStartup.cpp). The setup run
+  // first makes the pair's contact-history fix from the restart's per-atom data.
+  lastBalance_ = st.has("lastBalance") ? st.integer("lastBalance", -1, 2000000000) : -1;
+  if (st.has("slabSplits")) {
+    lig_->command("run 0");
+    setSlabSplits(*lig_, st.scalars("slabSplits", Range::closed(0, 1)));
+    lig_->orderByTag();
+  }
   // Rows written after the restart state are recomputed: drop them.
   if (rank_ == 0)
     for (const char* name : {"timeSeries.csv", "rankLoad.csv"})
@@ -292,11 +305,15 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
   Progress progress("dem " + s.name, t, s.endTime, out_);
   std::deque<std::pair<double, double>> frontHistory;  // (t, front) over the arrest window
   rep.stopReason = "endTime";
-  double nextBalance = t;
   while (t < s.endTime - 0.5 * dt_) {
-    if (s.dem.balanceInterval > 0 && t >= nextBalance - 0.5 * dt_) {
+    // At the first chunk from each multiple of balanceInterval: a resumed run (lastBalance_ from
+    // its state) re-balances where the uninterrupted one did.
+    const long k = s.dem.balanceInterval > 0
+                       ? static_cast<long>(std::floor((t + 0.5 * dt_) / s.dem.balanceInterval))
+                       : -1;
+    if (k > lastBalance_) {
       balanceSlabs(*lig_, comm_);
-      nextBalance = t + s.dem.balanceInterval;
+      lastBalance_ = k;
     }
     const long n = std::min(rec.sampleEvery(), std::max(1L, std::lround((s.endTime - t) / dt_)));
     lig_->run(n);

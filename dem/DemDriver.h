@@ -60,7 +60,8 @@ class DemDriver {
   long step0_ = 0;  // step at which the gate opened (t = 0)
   std::unique_ptr<CollapseRecorder> rec_;
   int restartSlot_ = 0;
-  int settleSlot_ = 0;  // the settle checkpoint's next restart file (SettleCheckpoint::slotFile)
+  long lastBalance_ = -1;  // k of the collapse's last re-balance, at k x balanceInterval
+  int settleSlot_ = 0;     // the settle checkpoint's next restart file (SettleCheckpoint::slotFile)
   SettleReport settled_;
 };
 
