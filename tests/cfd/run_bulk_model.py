@@ -228,6 +228,14 @@ def field_times(case):
     return [name for t, name in lc.fc.time_dirs(case) if t > 0]
 
 
+def steady_end(case, scale):
+    """The last written U, and how far it moved from the write before (max |du_x| / scale)."""
+    times = field_times(case)
+    last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
+    change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / scale
+    return f"max |u({times[-1]}) - u({times[-2]})| {change:.1e}", last, change
+
+
 def liquid_limit(a, work):
     bulk = bulk_case(work, "bulk_alpha0", BINGHAM, "solidFraction 0;\n", 0.5)
     ref = liquid_case(work, "liquid_bingham", BINGHAM, 0.5)
@@ -811,11 +819,8 @@ def incline(a, work):
     for n in (8, 16, 32):
         case = incline_case(a, work, n, h, h, 4, theta, end, rho, 2 * (h / n) ** 2 / nu)
         run_bulk(a, case)
-        times = field_times(case)
-        last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
-        change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / umax
-        ok &= lc.check(change <= 1e-8, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
-                       f"{change:.1e} u_max (<= 1e-8)")
+        moved, last, change = steady_end(case, umax)
+        ok &= lc.check(change <= 1e-8, f"n = {n}: steady, {moved} u_max (<= 1e-8)")
         dy, err2, errmax, side = h / n, 0.0, 0.0, 0.0
         for c, u in enumerate(last):
             y = (c // 4 + 0.5) * dy
@@ -977,11 +982,8 @@ def mui_incline(a, work):
         case = mui_layer(a, work, f"bulk_mui_incline_{n}", n, theta, end, vn * (h / n) ** 2 / nu_bed,
                          writes)
         run_bulk(a, case)
-        times = field_times(case)
-        last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
-        change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / u_surf
-        ok &= lc.check(change <= 1e-3, f"n = {n}: steady, max |u({times[-1]}) - u({times[-2]})| "
-                       f"{change:.1e} u_surface (<= 1e-3)")
+        moved, last, change = steady_end(case, u_surf)
+        ok &= lc.check(change <= 1e-3, f"n = {n}: steady, {moved} u_surface (<= 1e-3)")
         dz, err2, errmax = h / n, 0.0, 0.0
         for c, u in enumerate(last):
             z = (c // 4 + 0.5) * dz
