@@ -11,12 +11,14 @@ sample, dem/RankLoad.h), over the collapse (after the gate opens):
 The efficiency at 2 ranks is T1 / (2 T2) of the wall time of the whole ./Allrun, from serial and
 2-rank runs alternated --repeat times (median of each), on a machine with 2 idle cores.
 --balance S sets demDict balanceInterval S and processors "* 1 1" (x slabs re-balanced by
-particles, dem/SlabBalance.h; in a mixture the fluid keeps its slabs and the exchange routes each
+particles weighted by --weight, demDict balanceWeight, dem/SlabBalance.h; in a mixture the fluid keeps its slabs and the exchange routes each
 particle to its cells' ranks; demDict's default); 0: LIGGGHTS' own grid and equal slabs. --tier T
 runs the scene as scripts/suite.py --tier T would (none: the case as it is), --end S sets its
 controlDict endTime.
 
-usage: scaling.py [--scenes W+P,P] [--ranks 1,2,4,8] [--repeat 2] [--balance 0.05]
+--repeat 0 runs each rank count of --ranks above 1 once, for the load figures alone.
+
+usage: scaling.py [--scenes W+P,P] [--ranks 1,2,4,8] [--repeat 2] [--balance 0.05] [--weight W]
                   [--tier reference|none|...] [--end 1.0] [--json results/bench/scaling.json]
                   [--work runs/scaling]
 """
@@ -39,7 +41,7 @@ import suite  # noqa: E402
 SCENE_NAMES = {"P-quick": "P", "W+P-quick": "W&P", "P": "P", "W+P": "W&P"}
 
 
-def run_case(scene, ranks, work, tag, balance, tier=None, end=None):
+def run_case(scene, ranks, work, tag, balance, tier=None, end=None, weight="pairs"):
     """Fresh copy of cases/SCENE (with TIER's overrides) run with ./Allrun RANKS; (wall s, case
     dir)."""
     case = os.path.join(work, f"{scene}-np{ranks}-{tag}")
@@ -51,7 +53,7 @@ def run_case(scene, ranks, work, tag, balance, tier=None, end=None):
     else:
         outputs.copy_inputs(os.path.join(ROOT, "cases", scene), case)
     foamdict.edit_file(os.path.join(case, "system", "demDict"),
-                       {"balanceInterval": str(balance),
+                       {"balanceInterval": str(balance), "balanceWeight": weight,
                         "processors": '"* 1 1"' if balance > 0 else '"* * *"'},
                        note="bench/scaling.py")
     if end:
@@ -97,6 +99,8 @@ def main():
     ap.add_argument("--ranks", default="1,2,4,8")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--balance", type=float, default=0.05)
+    ap.add_argument("--weight", default="pairs", choices=("particles", "pairs", "contacts"),
+                    help="demDict balanceWeight: what a particle weighs in the re-balance")
     ap.add_argument("--tier", default="reference", help="a tier of scripts/suite.py applied to "
                     "the scene's copy; none: the case as it is")
     ap.add_argument("--end", type=float, default=1.0, help="controlDict endTime (s) of every run; "
@@ -108,7 +112,7 @@ def main():
     tier = suite.Tier(args.tier) if args.tier != "none" else None
     out = {"imbalance_max_over_mean": {}, "compute_imbalance_max_over_mean": {},
            "efficiency_2_ranks": {}, "wall_s": {}, "per_run": {},
-           "balance_interval_s": args.balance, "tier": args.tier, "end_time_s": args.end,
+           "balance_interval_s": args.balance, "balance_weight": args.weight, "tier": args.tier, "end_time_s": args.end,
            "command": "python3 bench/scaling.py " + " ".join(sys.argv[1:])}
     for scene in args.scenes.split(","):
         name = SCENE_NAMES.get(scene, scene)
@@ -117,14 +121,15 @@ def main():
         for k in range(args.repeat):
             for n in (1, 2):
                 wall, case = run_case(scene, n, args.work, f"r{k}", args.balance, tier,
-                                      args.end)
+                                      args.end, args.weight)
                 walls[n].append(wall)
                 out["per_run"][f"{scene} np{n} r{k}"] = load_figures(case)
                 print(f"{scene} np{n} r{k}: wall {wall:.1f} s", flush=True)
         for n in ranks:
-            if n in (1, 2):
+            if n == 1 or (n == 2 and args.repeat > 0):
                 continue
-            wall, case = run_case(scene, n, args.work, "r0", args.balance, tier, args.end)
+            wall, case = run_case(scene, n, args.work, "r0", args.balance, tier, args.end,
+                                  args.weight)
             out["per_run"][f"{scene} np{n} r0"] = load_figures(case)
             print(f"{scene} np{n}: wall {wall:.1f} s (oversubscribed)", flush=True)
         out["imbalance_max_over_mean"][name] = {
@@ -133,11 +138,13 @@ def main():
         out["compute_imbalance_max_over_mean"][name] = {
             str(n): out["per_run"][f"{scene} np{n} r0"]["compute_max_over_mean"]
             for n in ranks if n > 1}
-        t1, t2 = statistics.median(walls[1]), statistics.median(walls[2])
-        out["efficiency_2_ranks"][name] = t1 / (2 * t2)
-        out["wall_s"][name] = {"1": walls[1], "2": walls[2]}
-        print(f"{name}: efficiency at 2 ranks {t1 / (2 * t2):.2f}; particle imbalance "
-              f"{out['imbalance_max_over_mean'][name]}", flush=True)
+        if args.repeat > 0:
+            t1, t2 = statistics.median(walls[1]), statistics.median(walls[2])
+            out["efficiency_2_ranks"][name] = t1 / (2 * t2)
+            out["wall_s"][name] = {"1": walls[1], "2": walls[2]}
+        print(f"{name}: efficiency at 2 ranks {out['efficiency_2_ranks'].get(name)}; particle "
+              f"imbalance {out['imbalance_max_over_mean'][name]}; compute imbalance "
+              f"{out['compute_imbalance_max_over_mean'][name]}", flush=True)
     outputs.write_json(args.json, out)
     print("wrote", args.json)
 

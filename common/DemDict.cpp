@@ -76,11 +76,20 @@ Schema makeSchema() {
           scalarParam(
               "balanceInterval", m.balanceInterval, Range::nonNegative(), "s",
               "of the collapse between re-balances of the DEM's x slabs so that each "
-              "rank holds about the same number of particles (at the start of the settling, "
+              "rank holds about the same weight of particles (`balanceWeight`; at the start of "
+              "the settling, "
               "at the gate opening and then at this interval; needs an N × 1 × 1 grid, "
               "`processors \"* 1 1\"`). In a mixture the fluid keeps its own decomposition and "
               "the exchange routes each particle to the ranks of its cells; 0: the equal "
               "slabs LIGGGHTS makes"),
+          wordParam("balanceWeight", m.balanceWeight, {"particles", "pairs", "contacts"},
+                    "what a particle weighs when the x slabs are re-balanced: `particles` 1 each; "
+                    "`pairs` 1 + half the grains within r_i + r_j + the neighbour skin (its share "
+                    "of the contact model's pair list: a grain of the dense column costs more pair "
+                    "work than one of the spread tail); `contacts` 1 + half the grains it touches. "
+                    "Counted from the positions, so a resumed run re-balances as the uninterrupted "
+                    "one. LIGGGHTS compute imbalance (max/mean) of the reference W&P at 8 ranks: "
+                    "1.22 / 1.13 / 1.12 (results/bench/README.md, \"Ranks\")"),
           switchParam(
               "binarySnapshots", m.binarySnapshots,
               "beside each VTK snapshot, the same columns in LIGGGHTS' binary dump "
@@ -189,6 +198,7 @@ DemDict DemDict::read(const Dictionary& d) {
   m.arrestWindow = sc.scalar(d, "arrestWindow");
   readProcessors(sc, d, m.processors);
   m.balanceInterval = sc.scalar(d, "balanceInterval");
+  m.balanceWeight = sc.word(d, "balanceWeight");
   m.binarySnapshots = sc.flag(d, "binarySnapshots");
   readSettle(sc, d.subDictOrEmpty("settle"), r.settle);
   return r;

@@ -51,12 +51,15 @@ struct DemSpec {
   double arrestKineticTolerance = 1e-3;
   double arrestFrontDiameters = 0.1;
   double arrestWindow = 0.25;
-  double arrestMinTime = 0.3;        // never declare arrest before this time (s)
+  double arrestMinTime = 0.3;  // never declare arrest before this time (s)
   // x slabs re-balanced by particles: the grains start in the channel's first metres, so equal
   // slabs would leave most ranks idle (results/bench/README.md, "Ranks").
   std::string processors = "* 1 1";  // LIGGGHTS processors grid
   double balanceInterval = 0.05;     // s between re-balances of x slabs by particles; 0: never
-  bool binarySnapshots = true;       // a binary dump beside each VTK snapshot (dem/SnapshotFiles.h)
+  // What a particle weighs when the slabs are re-balanced: particles (1 each), pairs (1 + half
+  // its neighbours within r_i + r_j + skin) or contacts (1 + half the grains it touches).
+  std::string balanceWeight = "pairs";
+  bool binarySnapshots = true;  // a binary dump beside each VTK snapshot (dem/SnapshotFiles.h)
   // Savage number at the section x = savageX (docs/model.md §8): the shear rate is the
   // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
   // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.

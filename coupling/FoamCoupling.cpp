@@ -181,13 +181,13 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   for (const auto& m : forceModels_) modelNames.push_back(m->name());
   log_ = std::make_unique<ExchangeLog>(runTime, props_->exchangeEvery, props_->logEvery, modelNames,
                                        resume_);
-  balanceInterval_ = demBalanceInterval(std::string(runTime.globalPath()) + "/system/demDict");
+  readDemBalance(std::string(runTime.globalPath()) + "/system/demDict");
   // Resumed: the stopped run's last re-balance (its last interval ended at the start time).
   if (resume_) lastBalance_ = balanceIndex(runTime.value());
   if (balanceInterval_ > 0)
-    Foam::Info << "Coupling: the DEM's x slabs are re-balanced by particles every "
-               << balanceInterval_
-               << " s (demDict balanceInterval); the exchange routes each "
+    Foam::Info << "Coupling: the DEM's x slabs are re-balanced by particles (weight "
+               << balanceWeightWord_ << ") every " << balanceInterval_
+               << " s (demDict balanceInterval, balanceWeight); the exchange routes each "
                   "particle to the ranks of its cells"
                << Foam::endl;
 }
@@ -199,11 +199,14 @@ long FoamCoupling::balanceIndex(double t) const {
   return static_cast<long>(std::floor((t + 0.5 * exchangeInterval_) / balanceInterval_));
 }
 
-// demDict's balanceInterval, or 0 without a demDict (the coupling tests' cases have none).
-double FoamCoupling::demBalanceInterval(const std::string& file) {
-  if (!std::ifstream(file)) return 0;
+// demDict's balanceInterval (0 without a demDict: the coupling tests' cases have none) and
+// balanceWeight.
+void FoamCoupling::readDemBalance(const std::string& file) {
+  if (!std::ifstream(file)) return;
   try {
-    return DemDict::read(Dictionary::readFile(file)).dem.balanceInterval;
+    const DemSpec dem = DemDict::read(Dictionary::readFile(file)).dem;
+    balanceInterval_ = dem.balanceInterval;
+    balanceWeightWord_ = dem.balanceWeight;
   } catch (const InputError& e) {
     fatal(e.what());
   }
@@ -268,7 +271,8 @@ void FoamCoupling::evolve() {
     // (which starts from the stopped run's slabs) re-balances when the uninterrupted run did.
     const long k = balanceIndex(mesh_.time().value());
     if (balanceInterval_ > 0 && k > lastBalance_) {
-      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD) && lastBalance_ < 0 && Foam::Pstream::parRun())
+      if (!dem::balanceSlabs(*dem_, MPI_COMM_WORLD, dem::balanceWeight(balanceWeightWord_)) &&
+          lastBalance_ < 0 && Foam::Pstream::parRun())
         Foam::Info
             << "Coupling: balanceInterval: the DEM's processor grid is not x slabs (set "
                "demDict processors \"* 1 1\") or there is one rank; the slabs stay as they are"

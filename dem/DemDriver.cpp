@@ -113,7 +113,8 @@ SettleReport DemDriver::settle() {
   Progress progress("settle", t, s.settle.maxTime, out_);
   bool converged = false;
   // The sample stays behind the gate while it settles: one balance at the start holds.
-  if (s.dem.balanceInterval > 0 && !balanceSlabs(*lig_, comm_) && rank_ == 0 && size_ > 1)
+  if (s.dem.balanceInterval > 0 &&
+      !balanceSlabs(*lig_, comm_, balanceWeight(s.dem.balanceWeight)) && rank_ == 0 && size_ > 1)
     out_ << "[dem] balanceInterval: the processor grid is not x slabs (set processors \"* 1 1\") "
             "or there is one rank; the slabs stay equal"
          << std::endl;
@@ -312,7 +313,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
                        ? static_cast<long>(std::floor((t + 0.5 * dt_) / s.dem.balanceInterval))
                        : -1;
     if (k > lastBalance_) {
-      balanceSlabs(*lig_, comm_);
+      balanceSlabs(*lig_, comm_, balanceWeight(s.dem.balanceWeight));
       lastBalance_ = k;
     }
     const long n = std::min(rec.sampleEvery(), std::max(1L, std::lround((s.endTime - t) / dt_)));

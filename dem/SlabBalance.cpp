@@ -1,19 +1,100 @@
 #include "SlabBalance.h"
 
 // LIGGGHTS headers
+#include <atom.h>
 #include <comm.h>
 #include <domain.h>
 #include <irregular.h>
 #include <lammps.h>
+#include <neighbor.h>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include "CollapseRecorder.h"
+#include "Observables.h"
 
 namespace mixflow::dem {
 
-bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm) {
+BalanceWeight balanceWeight(const std::string& word) {
+  if (word == "pairs") return BalanceWeight::pairs;
+  if (word == "contacts") return BalanceWeight::contacts;
+  return BalanceWeight::particles;  // demDict has checked the word
+}
+
+namespace {
+
+struct Grain {
+  double x[3];
+  double r;
+};
+
+// Each grain's weight: 1, plus half the grains whose centre lies within r_i + r_j + skin (pairs)
+// or r_i + r_j (contacts) of its own, the minimum image across periodic sides. Half: a pair's
+// work is done once, by one of its two grains. Counted from the positions on one rank, not from
+// LIGGGHTS' neighbour lists, whose content depends on when they were last built: so the same
+// grains give the same slabs whatever the decomposition and whether the run was resumed.
+std::vector<double> grainWeights(const std::vector<Grain>& g, const LAMMPS_NS::Domain& box,
+                                 BalanceWeight weight, double skin) {
+  std::vector<double> w(g.size(), 1.0);
+  if (weight == BalanceWeight::particles || g.empty()) return w;
+  const double gap = weight == BalanceWeight::pairs ? skin : 0.0;
+  double rmax = 0;
+  for (const Grain& a : g) rmax = std::max(rmax, a.r);
+  const double reach = 2 * rmax + gap;  // no pair counted is farther apart than this
+  int nb[3];
+  for (int k = 0; k < 3; ++k) nb[k] = std::max(1, static_cast<int>(box.prd[k] / reach));
+  auto binOf = [&](const Grain& a, int k) {
+    const int b = static_cast<int>((a.x[k] - box.boxlo[k]) / box.prd[k] * nb[k]);
+    return std::clamp(b, 0, nb[k] - 1);
+  };
+  std::vector<std::vector<size_t>> bins(static_cast<size_t>(nb[0]) * nb[1] * nb[2]);
+  auto index = [&](int bx, int by, int bz) {
+    return (static_cast<size_t>(bz) * nb[1] + by) * nb[0] + bx;
+  };
+  for (size_t i = 0; i < g.size(); ++i)
+    bins[index(binOf(g[i], 0), binOf(g[i], 1), binOf(g[i], 2))].push_back(i);
+  for (size_t i = 0; i < g.size(); ++i) {
+    int b[3] = {binOf(g[i], 0), binOf(g[i], 1), binOf(g[i], 2)};
+    // The neighbouring bins, each once (a periodic side of fewer than 3 bins wraps onto itself).
+    std::vector<size_t> near;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int c[3] = {b[0] + dx, b[1] + dy, b[2] + dz};
+          bool inside = true;
+          for (int k = 0; k < 3; ++k) {
+            if (c[k] >= 0 && c[k] < nb[k]) continue;
+            if (box.periodicity[k])
+              c[k] = (c[k] + nb[k]) % nb[k];
+            else
+              inside = false;
+          }
+          if (inside) near.push_back(index(c[0], c[1], c[2]));
+        }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (const size_t bin : near)
+      for (const size_t j : bins[bin]) {
+        if (j == i) continue;
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+          double d = g[i].x[k] - g[j].x[k];
+          if (box.periodicity[k]) d -= box.prd[k] * std::round(d / box.prd[k]);
+          d2 += d * d;
+        }
+        const double reachIJ = g[i].r + g[j].r + gap;
+        if (d2 < reachIJ * reachIJ) w[i] += 0.5;
+      }
+  }
+  return w;
+}
+
+}  // namespace
+
+bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm, BalanceWeight weight) {
   LAMMPS_NS::LAMMPS* lmp = lig.lammps();
   LAMMPS_NS::Comm* c = lmp->comm;
   const int slabs = c->procgrid[0];
@@ -21,20 +102,35 @@ bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<double> split(slabs + 1, 0.0);
-  const auto centres = gatherCentres(lig.particles(), comm);
+  const LAMMPS_NS::Atom* a = lmp->atom;
+  std::vector<double> local;  // x, y, z, radius per particle
+  local.reserve(4 * a->nlocal);
+  for (int i = 0; i < a->nlocal; ++i)
+    local.insert(local.end(), {a->x[i][0], a->x[i][1], a->x[i][2], a->radius[i]});
+  const std::vector<double> all = gatherOnRoot(local, comm);
   if (rank == 0) {
-    std::vector<double> x;
-    x.reserve(centres.size());
-    for (const auto& p : centres) x.push_back(p[0]);
-    std::sort(x.begin(), x.end());
+    std::vector<Grain> g(all.size() / 4);
+    for (size_t i = 0; i < g.size(); ++i)
+      g[i] = {{all[4 * i], all[4 * i + 1], all[4 * i + 2]}, all[4 * i + 3]};
+    const std::vector<double> w = grainWeights(g, *lmp->domain, weight, lmp->neighbor->skin);
+    std::vector<std::pair<double, double>> xw(g.size());
+    for (size_t i = 0; i < g.size(); ++i) xw[i] = {g[i].x[0], w[i]};
+    std::sort(xw.begin(), xw.end());
+    std::vector<double> prefix(xw.size() + 1, 0.0);  // weight of the first k particles
+    for (size_t i = 0; i < xw.size(); ++i) prefix[i + 1] = prefix[i] + xw[i].second;
     const double lo = lmp->domain->boxlo[0], prd = lmp->domain->prd[0];
     split[slabs] = 1.0;
     for (int i = 1; i < slabs; ++i) {
-      // Boundary halfway between the neighbouring particles of the i-th quantile.
-      const size_t k = x.size() * i / slabs;
-      const double b = x.empty()
-                           ? lo + prd * i / slabs
-                           : (k == 0 ? x[0] : 0.5 * (x[k - 1] + x[std::min(k, x.size() - 1)]));
+      // The i-th weighted quantile: the most particles whose weight is at most i / slabs of
+      // the total (with unit weights, n i / slabs rounded down); the boundary lies halfway
+      // between that last particle and the next.
+      const double target = prefix.back() * i / slabs;
+      const size_t k = static_cast<size_t>(std::upper_bound(prefix.begin(), prefix.end(), target) -
+                                           prefix.begin() - 1);
+      const double b =
+          xw.empty() ? lo + prd * i / slabs
+                     : (k == 0 ? xw[0].first
+                               : 0.5 * (xw[k - 1].first + xw[std::min(k, xw.size() - 1)].first));
       split[i] = std::clamp((b - lo) / prd, split[i - 1], 1.0);
     }
   }
