@@ -1,7 +1,8 @@
 """Checks of a case mixflowDem wrote: every snapshot has its binary twin (python/mixflow/outputs.py
 layout) holding the VTK's positions, mixflowExtract reads the twins, and its HDF5 equals the one
-extracted from the VTK files alone. The VTK text keeps 6 significant digits (relative rounding at
-most 5e-6), so positions agree within 5e-6 relative and every extracted number within 1e-4 of its
+extracted from the VTK files alone. The VTK's POINTS are float32 (relative rounding at most 2^-24)
+written with 6 significant digits (at most 5e-6 more), so positions agree within 5e-6 + 2^-24
+relative and every extracted number within 1e-4 of its
 dataset's largest magnitude (sums of rounded values; a cancelling sum such as the shear stress,
 about a tenth of its terms, amplifies their rounding about tenfold: measured 2e-5), masks and
 window counts exactly. The
@@ -44,6 +45,10 @@ def _datasets(path):
     return out
 
 
+# float32 POINTS (2^-24) printed with 6 significant digits (5e-6), both relative.
+POINT_ROUNDING = 5e-6 + 2.0 ** -24
+
+
 def check_twins(exe, case, check):
     """CHECK(cond, what) for each check; needs the case's system/extractDict."""
     snaps = observables.vtk_series(case)
@@ -58,9 +63,9 @@ def check_twins(exe, case, check):
         c = outputs.SNAPSHOT_COLUMNS
         xyz = rows[:, c.index("x"):c.index("z") + 1]
         err = np.max(np.abs(xyz - pts) / np.maximum(np.abs(xyz), 1e-12)) if len(pts) else 0.0
-        check(len(rows) == len(pts) and err <= 5e-6,
-              f"t = {t}: {len(rows)} binary rows, positions within {err:.1e} relative of the VTK's "
-              f"(tolerance 5e-6)")
+        check(len(rows) == len(pts) and err <= POINT_ROUNDING,
+              f"t = {t}: {len(rows)} binary rows, positions within {err:.3e} relative of the VTK's "
+              f"(tolerance {POINT_ROUNDING:.3e})")
     rc, counts, log = _extract(exe, case)
     check(rc == 0 and counts is not None and counts[0] > 0 and counts[1] == counts[0],
           f"mixflowExtract read the binary snapshots (read, binary: {counts})")
