@@ -11,8 +11,9 @@ sample, dem/RankLoad.h), over the collapse (after the gate opens):
 The efficiency at 2 ranks is T1 / (2 T2) of the wall time of the whole ./Allrun, from serial and
 2-rank runs alternated --repeat times (median of each), on a machine with 2 idle cores.
 --balance S sets demDict balanceInterval S and processors "* 1 1" (x slabs re-balanced by
-particles weighted by --weight, demDict balanceWeight, dem/SlabBalance.h; in a mixture the fluid keeps its slabs and the exchange routes each
-particle to its cells' ranks; demDict's default); 0: LIGGGHTS' own grid and equal slabs. --tier T
+particles weighted by --weight, demDict balanceWeight, dem/SlabBalance.h; in a mixture the fluid
+keeps its slabs and the exchange routes each particle to its cells' ranks; demDict's default); 0:
+LIGGGHTS' own grid and equal slabs. --tier T
 runs the scene as scripts/suite.py --tier T would (none: the case as it is), --end S sets its
 controlDict endTime.
 
@@ -112,7 +113,8 @@ def main():
     tier = suite.Tier(args.tier) if args.tier != "none" else None
     out = {"imbalance_max_over_mean": {}, "compute_imbalance_max_over_mean": {},
            "efficiency_2_ranks": {}, "wall_s": {}, "per_run": {},
-           "balance_interval_s": args.balance, "balance_weight": args.weight, "tier": args.tier, "end_time_s": args.end,
+           "balance_interval_s": args.balance, "balance_weight": args.weight, "tier": args.tier,
+           "end_time_s": args.end,
            "command": "python3 bench/scaling.py " + " ".join(sys.argv[1:])}
     for scene in args.scenes.split(","):
         name = SCENE_NAMES.get(scene, scene)

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "ContactTimes.h"
+#include "NearPairs.h"
 
 namespace mixflow::dem {
 
@@ -69,47 +70,9 @@ double granularFront(const std::vector<std::array<double, 3>>& c, double radius,
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
   const bool periodic = periodicWidth > 0;
   if (periodic) lo[2] = 0.0, hi[2] = periodicWidth;
-  int dims[3];
-  for (int k = 0; k < 3; ++k) dims[k] = std::max(1, static_cast<int>((hi[k] - lo[k]) / reach));
-  auto cellOf = [&](const std::array<double, 3>& p, int k) {
-    return std::clamp(static_cast<int>((p[k] - lo[k]) / (hi[k] - lo[k] + 1e-300) * dims[k]), 0,
-                      dims[k] - 1);
-  };
-  // Dense cell list: head/next linked lists.
-  std::vector<int> head(static_cast<size_t>(dims[0]) * dims[1] * dims[2], -1), next(n, -1);
-  auto index = [&](int i, int j, int k) {
-    return (static_cast<size_t>(k) * dims[1] + j) * dims[0] + i;
-  };
-  for (int p = 0; p < n; ++p) {
-    const size_t id = index(cellOf(c[p], 0), cellOf(c[p], 1), cellOf(c[p], 2));
-    next[p] = head[id];
-    head[id] = p;
-  }
   DisjointSets sets(n);
-  const double reach2 = reach * reach;
-  for (int p = 0; p < n; ++p) {
-    const int ci = cellOf(c[p], 0), cj = cellOf(c[p], 1), ck = cellOf(c[p], 2);
-    for (int dk = -1; dk <= 1; ++dk) {
-      int k = ck + dk;
-      if (periodic) k = (k + dims[2]) % dims[2];
-      if (k < 0 || k >= dims[2]) continue;
-      for (int dj = -1; dj <= 1; ++dj) {
-        const int j = cj + dj;
-        if (j < 0 || j >= dims[1]) continue;
-        for (int di = -1; di <= 1; ++di) {
-          const int i = ci + di;
-          if (i < 0 || i >= dims[0]) continue;
-          for (int q = head[index(i, j, k)]; q >= 0; q = next[q]) {
-            if (q <= p) continue;
-            double dz = c[p][2] - c[q][2];
-            if (periodic) dz -= periodicWidth * std::round(dz / periodicWidth);
-            const double dx = c[p][0] - c[q][0], dy = c[p][1] - c[q][1];
-            if (dx * dx + dy * dy + dz * dz <= reach2) sets.unite(p, q);
-          }
-        }
-      }
-    }
-  }
+  const bool axes[3] = {false, false, periodic};
+  forEachPairWithin(c, lo, hi, axes, reach, [&](int p, int q, double) { sets.unite(p, q); });
   std::vector<int> size(n, 0);
   int biggest = 0;
   for (int p = 0; p < n; ++p) {

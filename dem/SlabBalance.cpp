@@ -9,11 +9,12 @@
 #include <neighbor.h>
 
 #include <algorithm>
-#include <cmath>
+#include <array>
 #include <utility>
 #include <vector>
 
 #include "CollapseRecorder.h"
+#include "NearPairs.h"
 #include "Observables.h"
 
 namespace mixflow::dem {
@@ -26,69 +27,25 @@ BalanceWeight balanceWeight(const std::string& word) {
 
 namespace {
 
-struct Grain {
-  double x[3];
-  double r;
-};
-
 // Each grain's weight: 1, plus half the grains whose centre lies within r_i + r_j + skin (pairs)
 // or r_i + r_j (contacts) of its own, the minimum image across periodic sides. Half: a pair's
 // work is done once, by one of its two grains. Counted from the positions on one rank, not from
 // LIGGGHTS' neighbour lists, whose content depends on when they were last built: so the same
 // grains give the same slabs whatever the decomposition and whether the run was resumed.
-std::vector<double> grainWeights(const std::vector<Grain>& g, const LAMMPS_NS::Domain& box,
+std::vector<double> grainWeights(const std::vector<std::array<double, 3>>& x,
+                                 const std::vector<double>& r, const LAMMPS_NS::Domain& box,
                                  BalanceWeight weight, double skin) {
-  std::vector<double> w(g.size(), 1.0);
-  if (weight == BalanceWeight::particles || g.empty()) return w;
+  std::vector<double> w(x.size(), 1.0);
+  if (weight == BalanceWeight::particles || x.empty()) return w;
   const double gap = weight == BalanceWeight::pairs ? skin : 0.0;
-  double rmax = 0;
-  for (const Grain& a : g) rmax = std::max(rmax, a.r);
-  const double reach = 2 * rmax + gap;  // no pair counted is farther apart than this
-  int nb[3];
-  for (int k = 0; k < 3; ++k) nb[k] = std::max(1, static_cast<int>(box.prd[k] / reach));
-  auto binOf = [&](const Grain& a, int k) {
-    const int b = static_cast<int>((a.x[k] - box.boxlo[k]) / box.prd[k] * nb[k]);
-    return std::clamp(b, 0, nb[k] - 1);
-  };
-  std::vector<std::vector<size_t>> bins(static_cast<size_t>(nb[0]) * nb[1] * nb[2]);
-  auto index = [&](int bx, int by, int bz) {
-    return (static_cast<size_t>(bz) * nb[1] + by) * nb[0] + bx;
-  };
-  for (size_t i = 0; i < g.size(); ++i)
-    bins[index(binOf(g[i], 0), binOf(g[i], 1), binOf(g[i], 2))].push_back(i);
-  for (size_t i = 0; i < g.size(); ++i) {
-    int b[3] = {binOf(g[i], 0), binOf(g[i], 1), binOf(g[i], 2)};
-    // The neighbouring bins, each once (a periodic side of fewer than 3 bins wraps onto itself).
-    std::vector<size_t> near;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          int c[3] = {b[0] + dx, b[1] + dy, b[2] + dz};
-          bool inside = true;
-          for (int k = 0; k < 3; ++k) {
-            if (c[k] >= 0 && c[k] < nb[k]) continue;
-            if (box.periodicity[k])
-              c[k] = (c[k] + nb[k]) % nb[k];
-            else
-              inside = false;
-          }
-          if (inside) near.push_back(index(c[0], c[1], c[2]));
-        }
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    for (const size_t bin : near)
-      for (const size_t j : bins[bin]) {
-        if (j == i) continue;
-        double d2 = 0;
-        for (int k = 0; k < 3; ++k) {
-          double d = g[i].x[k] - g[j].x[k];
-          if (box.periodicity[k]) d -= box.prd[k] * std::round(d / box.prd[k]);
-          d2 += d * d;
-        }
-        const double reachIJ = g[i].r + g[j].r + gap;
-        if (d2 < reachIJ * reachIJ) w[i] += 0.5;
-      }
-  }
+  const double rmax = *std::max_element(r.begin(), r.end());
+  const bool periodic[3] = {box.periodicity[0] != 0, box.periodicity[1] != 0,
+                            box.periodicity[2] != 0};
+  forEachPairWithin(x, box.boxlo, box.boxhi, periodic, 2 * rmax + gap,
+                    [&](int p, int q, double d2) {
+                      const double reach = r[p] + r[q] + gap;
+                      if (d2 < reach * reach) w[p] += 0.5, w[q] += 0.5;
+                    });
   return w;
 }
 
@@ -109,12 +66,15 @@ bool balanceSlabs(LiggghtsSession& lig, MPI_Comm comm, BalanceWeight weight) {
     local.insert(local.end(), {a->x[i][0], a->x[i][1], a->x[i][2], a->radius[i]});
   const std::vector<double> all = gatherOnRoot(local, comm);
   if (rank == 0) {
-    std::vector<Grain> g(all.size() / 4);
-    for (size_t i = 0; i < g.size(); ++i)
-      g[i] = {{all[4 * i], all[4 * i + 1], all[4 * i + 2]}, all[4 * i + 3]};
-    const std::vector<double> w = grainWeights(g, *lmp->domain, weight, lmp->neighbor->skin);
-    std::vector<std::pair<double, double>> xw(g.size());
-    for (size_t i = 0; i < g.size(); ++i) xw[i] = {g[i].x[0], w[i]};
+    std::vector<std::array<double, 3>> x(all.size() / 4);
+    std::vector<double> r(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+      x[i] = {all[4 * i], all[4 * i + 1], all[4 * i + 2]};
+      r[i] = all[4 * i + 3];
+    }
+    const std::vector<double> w = grainWeights(x, r, *lmp->domain, weight, lmp->neighbor->skin);
+    std::vector<std::pair<double, double>> xw(x.size());
+    for (size_t i = 0; i < x.size(); ++i) xw[i] = {x[i][0], w[i]};
     std::sort(xw.begin(), xw.end());
     std::vector<double> prefix(xw.size() + 1, 0.0);  // weight of the first k particles
     for (size_t i = 0; i < xw.size(); ++i) prefix[i + 1] = prefix[i] + xw[i].second;
