@@ -117,6 +117,9 @@ def main():
                     "the case's couplingProperties)")
     ap.add_argument("--drag-integration", choices=("implicit", "held"),
                     help="couplingProperties dragIntegration (default: the case's)")
+    ap.add_argument("--case", help="a mixture case to bench instead of the quick-size scene, e.g. "
+                    "a suite run's WORK/HB+P at tier paper-window (its inputs are copied; "
+                    "--liquid is then ignored)")
     ap.add_argument("--liquid", default="HB", choices=("HB", "W", "B"),
                     help="the liquid of this case in cases/ (default HB: the issue's HB&P)")
     ap.add_argument("--drag-fluid-response", choices=("none", "share", "continuity"),
@@ -154,14 +157,16 @@ def main():
     os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
     os.environ["MIXFLOW_ROOT"] = ROOT
 
-    # The coupled scene: W+P-quick with case HB's liquid (or --liquid's).
-    cpl = os.path.join(work, f"{a.liquid}+P-quick")
-    outputs.copy_inputs(os.path.join(ROOT, "cases", "W+P-quick"), cpl)
+    # The coupled scene: W+P-quick with case HB's liquid (or --liquid's), or --case as it is.
+    label = os.path.basename(os.path.normpath(a.case)) if a.case else f"{a.liquid}+P-quick"
+    cpl = os.path.join(work, label)
+    outputs.copy_inputs(a.case or os.path.join(ROOT, "cases", "W+P-quick"), cpl)
     sp = os.path.join(cpl, "constant", "sceneProperties")
     text = open(sp).read()
-    hb = open(os.path.join(ROOT, "cases", a.liquid, "constant", "sceneProperties")).read()
-    text = text[:text.index("liquid   //")] + hb[hb.index("liquid   //"):]
-    open(sp, "w").write(text)
+    if not a.case:
+        hb = open(os.path.join(ROOT, "cases", a.liquid, "constant", "sceneProperties")).read()
+        text = text[:text.index("liquid   //")] + hb[hb.index("liquid   //"):]
+        open(sp, "w").write(text)
     set_entry(os.path.join(cpl, "system", "controlDict"), "endTime", repr(a.end))
     cp = os.path.join(cpl, "constant", "couplingProperties")
     if a.drag_integration:
@@ -214,7 +219,7 @@ def main():
     vmaxes = [None if v == "none" else float(v) for v in a.drag_viscosity_max.split(",")] \
         if a.drag_viscosity_max else [None]
     for vmax, n in ((v, n) for v in vmaxes for n in everies):
-        case = os.path.join(work, f"{a.liquid}+P-quick-every{n}" +
+        case = os.path.join(work, f"{label}-every{n}" +
                             ("" if vmax is None else f"-dragvmax{vmax:g}"))
         shutil.copytree(cpl, case)  # the settled sample included
         set_entry(os.path.join(case, "constant", "couplingProperties"), "exchangeEvery", str(n))
@@ -272,7 +277,8 @@ def main():
             r["change_vs_every%d" % group[0]["exchange_every"]] = {
                 k: v - group[0]["observables"][k] for k, v in r["observables"].items()}
     res = {
-        "scene": f"W+P-quick geometry with case {a.liquid}'s liquid (2-D fluid 0.06 m)",
+        "scene": a.case if a.case else
+        f"W+P-quick geometry with case {a.liquid}'s liquid (2-D fluid 0.06 m)",
         "drag_integration": props.get("dragIntegration", "implicit"),
         "drag_fluid_response": props.get("dragFluidResponse", "none"),
         "void_smoothing": a.void_smoothing if a.void_smoothing is not None else 0.0,

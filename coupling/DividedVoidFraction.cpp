@@ -3,9 +3,11 @@
 // the point, points in no cell are the particle's outside volume. Volume is conserved to
 // round-off: sum over cells + outside = V_p.
 //
-// Cost: one cell search per point, walking from the centre's cell. A sphere that lies entirely
-// inside its centre's cell (CellLocator::sphereInsideCell) skips the points: all of them would
-// land in that cell anyway, since every point is inside the sphere.
+// Cost: a sphere that lies entirely inside its centre's cell (CellLocator::sphereInsideCell)
+// skips the points: all of them would land in that cell anyway, since every point is inside the
+// sphere. Otherwise a point is tested against the centre cell's faces the sphere crosses
+// (CellLocator::crossedFaces, one or two on a hex mesh); only a point beyond one of them is
+// searched for (findCell, walking from the centre's cell).
 //
 // Face smoothing (dividedCoeffs smoothing s, a fraction of the particle radius; default 0 = off).
 // Without it eps_f jumps by a whole point's weight (1/48 of the particle) when a point crosses a
@@ -62,11 +64,16 @@ class DividedVoidFraction final : public VoidFractionModel {
       return;
     }
     const long pointSeed = out.centreCell >= 0 ? out.centreCell : seed;
-    std::vector<CellLocator::NearFace> near;
+    // The centre cell's faces the sphere crosses: a point behind all of them is in that cell
+    // without a search (most points; the search would return the same cell).
+    thread_local std::vector<CellLocator::HalfSpace> crossed;
+    const bool shortcut =
+        out.centreCell >= 0 && mesh.crossedFaces(p.x, p.radius, out.centreCell, crossed);
+    thread_local std::vector<CellLocator::NearFace> near;
     for (size_t j = 0; j < points_.offsets.size(); ++j) {
       const double w = points_.weights[j] * vp;
       const Vec3 x = p.x + p.radius * points_.offsets[j];
-      const long c = mesh.findCell(x, pointSeed);
+      const long c = shortcut && behindAll(crossed, x) ? out.centreCell : mesh.findCell(x, pointSeed);
       if (c < 0) {
         out.outsideVolume += w;
         continue;
@@ -109,6 +116,11 @@ class DividedVoidFraction final : public VoidFractionModel {
   const SpherePoints& points() const { return points_; }
 
  private:
+  static bool behindAll(const std::vector<CellLocator::HalfSpace>& planes, const Vec3& x) {
+    for (const auto& h : planes)
+      if (dot(h.n, x) - h.d > 0) return false;
+    return true;
+  }
   static void add(ParticleCells& out, long c, double w) {
     for (auto& cv : out.volumes)
       if (cv.first == c) {

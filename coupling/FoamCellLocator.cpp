@@ -115,6 +115,22 @@ bool FoamCellLocator::sphereInsideCell(const Vec3& centre, double r, long cell) 
   return true;
 }
 
+// The planes sphereInsideCell finds closer than r. A point of the sphere behind all of them is
+// behind every plane of the cell, so the hop walk would return the cell itself; a wrapped point
+// of a z-spanning cell keeps its x and y, which the remaining planes (normals in x-y) test.
+bool FoamCellLocator::crossedFaces(const Vec3& centre, double r, long cell,
+                                   std::vector<HalfSpace>& out) const {
+  out.clear();
+  const Foam::point c(centre.x, centre.y, centre.z);
+  const bool wrapped = periodicZ_ && spansZ_[cell];
+  for (long k = firstPlane_[cell]; k < firstPlane_[cell + 1]; ++k) {
+    const Plane& pl = planes_[k];
+    if (wrapped && pl.wrapZ) continue;
+    if (pl.d - (pl.n & c) < r) out.push_back({Vec3(pl.n.x(), pl.n.y(), pl.n.z()), pl.d});
+  }
+  return true;
+}
+
 void FoamCellLocator::facesNear(const Vec3& p, long cell, double band,
                                 std::vector<NearFace>& out) const {
   out.clear();

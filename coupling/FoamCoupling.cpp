@@ -295,20 +295,20 @@ void FoamCoupling::locate(Exchange& x) {
   x.here = router_->toMeshes(x.own, x.tags);
   for (MeshParticle& m : x.here) {
     // Seed: the cell this rank found the particle's centre in at the last exchange.
-    const auto it = lastCell_.find(m.tag);
-    voidFractionModel_->locate(m.p, it == lastCell_.end() ? -1 : it->second, *locator_, m.cells);
+    const bool known = m.tag >= 0 && static_cast<size_t>(m.tag) < lastCell_.size() &&
+                       lastCell_[m.tag].exchange == exchanges_ - 1;
+    voidFractionModel_->locate(m.p, known ? lastCell_[m.tag].cell : -1, *locator_, m.cells);
   }
 }
 
 void FoamCoupling::voidFraction(Exchange& x) {
   assembly_->reset();
-  std::unordered_map<std::int64_t, long> newCell;
-  newCell.reserve(x.here.size());
   for (const MeshParticle& m : x.here) {
     assembly_->addSolid(m.cells);
-    if (m.cells.centreCell >= 0) newCell[m.tag] = m.cells.centreCell;
+    if (m.cells.centreCell < 0 || m.tag < 0) continue;
+    if (static_cast<size_t>(m.tag) >= lastCell_.size()) lastCell_.resize(m.tag + 1);
+    lastCell_[m.tag] = {exchanges_, m.cells.centreCell};
   }
-  lastCell_.swap(newCell);
   assembly_->finishVoidfraction();
   Foam::scalarField& vf = voidfraction_.primitiveFieldRef();
   const std::vector<double>& eps = assembly_->voidfraction();
@@ -427,7 +427,7 @@ void FoamCoupling::resampleFluidVelocity() {
     std::vector<std::vector<VelocityRecord>> send(router_->size());
     for (const Sample& s : samples_)
       send[s.owner].push_back({s.ownerIndex, fluid.velocity(s.x, s.cell)});
-    const auto in = router_->route(send, VelocityRecord::kWidth);
+    const auto in = router_->route(std::move(send), VelocityRecord::kWidth);
     std::vector<Vec3> Unew(sampleHost_.size());
     std::vector<char> has(sampleHost_.size(), 0);
     for (int q = 0; q < router_->size(); ++q)

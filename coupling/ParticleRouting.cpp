@@ -110,8 +110,11 @@ std::vector<MeshParticle> ParticleRouter::toMeshes(const std::vector<ParticleSta
         continue;
       send[q].push_back({static_cast<long>(i), tags[i], own[i]});
     }
+  const auto in = route(std::move(send), ParticleRecord::kWidth);
   std::vector<MeshParticle> here;
-  const auto in = route(send, ParticleRecord::kWidth);
+  size_t total = 0;
+  for (const auto& records : in) total += records.size();
+  here.reserve(total);
   for (int q = 0; q < size_; ++q)
     for (const ParticleRecord& r : in[q]) {
       MeshParticle m;
@@ -141,7 +144,7 @@ std::vector<OwnedParticle> ParticleRouter::toOwners(const std::vector<MeshPartic
     send[m.owner].push_back(std::move(r));
   }
   std::vector<OwnedParticle> owned(nOwn);
-  const auto in = route(send, PartRecord::width(nModels));
+  const auto in = route(std::move(send), PartRecord::width(nModels));
   for (int q = 0; q < size_; ++q)  // rank order: the first centre holder is the lowest rank
     for (const PartRecord& r : in[q]) {
       OwnedParticle& o = owned.at(static_cast<size_t>(r.ownerIndex));
@@ -169,8 +172,10 @@ std::vector<ReactionRecord> ParticleRouter::toParts(const std::vector<OwnedParti
       send[part.rank].push_back({part.workIndex, o.reaction, o.inside, isHost, o.sigma});
     }
   }
+  auto in = route(std::move(send), ReactionRecord::kWidth);
+  if (size_ == 1) return std::move(in[0]);
   std::vector<ReactionRecord> here;
-  for (auto& records : route(send, ReactionRecord::kWidth))
+  for (auto& records : in)
     for (ReactionRecord& r : records) here.push_back(std::move(r));
   return here;
 }

@@ -136,17 +136,27 @@ class ParticleRouter {
   std::vector<ReactionRecord> toParts(const std::vector<OwnedParticle>& owned) const;
 
   // Records R (pack, unpack, `width` doubles each) to the ranks: send[q] to rank q; returns
-  // what each rank sent here.
+  // what each rank sent here. This rank's own records are moved, not packed (pack and unpack
+  // are lossless, so the result is the same).
   template <class R>
-  std::vector<std::vector<R>> route(const std::vector<std::vector<R>>& send, size_t width) const {
+  std::vector<std::vector<R>> route(std::vector<std::vector<R>> send, size_t width) const {
     std::vector<std::vector<double>> buf(size_);
-    for (int q = 0; q < size_; ++q)
+    for (int q = 0; q < size_; ++q) {
+      if (q == rank_) continue;
+      buf[q].reserve(send[q].size() * width);
       for (const R& r : send[q]) r.pack(buf[q]);
+    }
     const std::vector<std::vector<double>> in = exchangeBuffers(buf, comm_);
     std::vector<std::vector<R>> out(size_);
-    for (int q = 0; q < size_; ++q)
+    for (int q = 0; q < size_; ++q) {
+      if (q == rank_) {
+        out[q] = std::move(send[q]);
+        continue;
+      }
+      out[q].reserve(in[q].size() / width);
       for (size_t k = 0; k + width <= in[q].size(); k += width)
         out[q].push_back(R::unpack(&in[q][k], width));
+    }
     return out;
   }
 

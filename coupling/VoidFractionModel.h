@@ -33,6 +33,18 @@ class CellLocator {
   virtual bool sphereInsideCell(const Vec3& /*centre*/, double /*r*/, long /*cell*/) const {
     return false;
   }
+  // Optional fast path for the points of one sphere: the faces of the convex `cell` that the
+  // sphere (centre, r) crosses, as half-spaces n . x <= d, in `out` (cleared first). A point of
+  // the sphere inside all of them lies in `cell`, so only the others need findCell. False if
+  // not provided.
+  struct HalfSpace {
+    Vec3 n;
+    double d;
+  };
+  virtual bool crossedFaces(const Vec3& /*centre*/, double /*r*/, long /*cell*/,
+                            std::vector<HalfSpace>& /*out*/) const {
+    return false;
+  }
   // Optional, for the divided model's face smoothing: the faces between `cell` (which holds p)
   // and another local cell whose plane lies within `band` of p, in `out` (cleared first).
   // Default: none, so no smoothing.
