@@ -73,7 +73,8 @@ class DividedVoidFraction final : public VoidFractionModel {
     for (size_t j = 0; j < points_.offsets.size(); ++j) {
       const double w = points_.weights[j] * vp;
       const Vec3 x = p.x + p.radius * points_.offsets[j];
-      const long c = shortcut && behindAll(crossed, x) ? out.centreCell : mesh.findCell(x, pointSeed);
+      const long c =
+          shortcut && behindAll(crossed, x) ? out.centreCell : mesh.findCell(x, pointSeed);
       if (c < 0) {
         out.outsideVolume += w;
         continue;

@@ -7,9 +7,11 @@
 //   2. points outside the mesh give -1;
 //   3. sphereInsideCell(centre, r, cell) true => every one of the 48 sphere points of the divided
 //      model is found in `cell` (with -periodicZ: after wrapping z into the mesh's z range, and
-//      a 2-D mesh's cells then hold the spheres that cross its front and back).
-// Exit status 1 on the first kind of failure, with counts; prints how many spheres took the
-// inside-cell shortcut (the locator's fast path must be used, not only be correct).
+//      a 2-D mesh's cells then hold the spheres that cross its front and back);
+//   4. a sphere point behind all of crossedFaces(centre, r, cell) is found in `cell`, and at
+//      least one point of a sphere that is not inside its cell is beyond one of them.
+// Exit status 1 on the first kind of failure, with counts; prints how many spheres and points
+// took the shortcuts (the locator's fast paths must be used, not only be correct).
 #include <cmath>
 #include <random>
 
@@ -78,6 +80,8 @@ int main(int argc, char* argv[]) {
   const double r = cellSize / 6;
   const SpherePoints pts = SpherePoints::make(3, 16);
   label shortcut = 0, shortcutWrong = 0, pointWrong = 0, spheres = 0;
+  label behind = 0, behindWrong = 0, crossedNone = 0;
+  std::vector<mixflow::coupling::CellLocator::HalfSpace> crossed;
   for (label i = 0; i < nPoints / 10; ++i) {
     const point c = randomIn(0);
     const label cc = reference.findCell(c, -1, true);
@@ -86,12 +90,20 @@ int main(int argc, char* argv[]) {
     const Vec3 centre(c.x(), c.y(), c.z());
     const bool in = locator.sphereInsideCell(centre, r, cc);
     shortcut += in;
+    locator.crossedFaces(centre, r, cc, crossed);
+    if (!in && crossed.empty()) ++crossedNone;
     for (const Vec3& o : pts.offsets) {
       const Vec3 p = centre + r * o;
       const point q = wrapZ(point(p.x, p.y, p.z));
       const label ref = reference.findCell(q, -1, true);
       if (locator.findCell(p, cc) != ref) ++pointWrong;
       if (in && ref != cc) ++shortcutWrong;
+      bool behindAll = true;
+      for (const auto& h : crossed) behindAll = behindAll && dot(h.n, p) - h.d <= 0;
+      if (!in && behindAll) {
+        ++behind;
+        if (ref != cc) ++behindWrong;
+      }
     }
   }
 
@@ -100,9 +112,12 @@ int main(int argc, char* argv[]) {
        << "  outside points given a cell: " << outsideWrong << nl << "spheres (r = " << r
        << " m): " << spheres << ", inside their centre's cell: " << shortcut << nl
        << "  sphere points differing from meshSearch: " << pointWrong << nl
-       << "  shortcut spheres with a point elsewhere: " << shortcutWrong << endl;
+       << "  shortcut spheres with a point elsewhere: " << shortcutWrong << nl
+       << "points of the other spheres behind their centre cell's crossed faces: " << behind << nl
+       << "  of these, elsewhere: " << behindWrong << nl
+       << "  spheres not inside with no crossed face: " << crossedNone << endl;
   const bool ok = wrong == 0 && outsideWrong == 0 && pointWrong == 0 && shortcutWrong == 0 &&
-                  shortcut > 0 && inside > 0;
+                  behindWrong == 0 && crossedNone == 0 && shortcut > 0 && behind > 0 && inside > 0;
   Info << (ok ? "PASS" : "FAIL") << endl;
   return ok ? 0 : 1;
 }
