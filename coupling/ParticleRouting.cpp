@@ -173,8 +173,10 @@ std::vector<ReactionRecord> ParticleRouter::toParts(const std::vector<OwnedParti
     }
   }
   auto in = route(std::move(send), ReactionRecord::kWidth);
-  if (size_ == 1) return std::move(in[0]);
   std::vector<ReactionRecord> here;
+  size_t total = 0;
+  for (const auto& records : in) total += records.size();
+  here.reserve(total);
   for (auto& records : in)
     for (ReactionRecord& r : records) here.push_back(std::move(r));
   return here;
