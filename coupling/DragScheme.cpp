@@ -1,6 +1,7 @@
 #include "DragScheme.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -170,21 +171,20 @@ double DragScheme::fluidSideScale(double beta, double mass) const {
 
 void DragScheme::centreForce(const std::vector<std::unique_ptr<ForceModel>>& models,
                              const ParticleState& p, const FluidAtParticle& f,
-                             const Vec3& ownAcceleration, CentreForce& d,
-                             std::vector<Vec3>& modelForces, Counts& counts) const {
+                             const Vec3& ownAcceleration, CentreForce& d, ModelForces& modelForces,
+                             Counts& counts) const {
   d.U = f.U;
   // c = (1 - eps) / eps: how fast the pore fluid counterflows a compacting grain (continuity in
   // a cell of held mixture flux); the continuity response and the stability bounds.
   const double c = f.voidfraction > 0 ? (1.0 - f.voidfraction) / f.voidfraction : 0.0;
   response(p, f, ownAcceleration, c, d);
-  std::vector<ParticleForce> fms(models.size());
+  std::array<ParticleForce, kMaxForceModels> fms;
   for (size_t m = 0; m < models.size(); ++m) {
     fms[m] = models[m]->force(p, f);
     d.force.beta += fms[m].beta;
     d.force.explicitForce += fms[m].explicitForce;
   }
   const double s = scale(p, f, c, d.force, counts);
-  modelForces.resize(models.size());
   for (size_t m = 0; m < models.size(); ++m) {
     fms[m].beta *= s;
     modelForces[m] = fms[m].total(f.U, p.v);

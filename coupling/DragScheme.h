@@ -55,7 +55,7 @@ class DragScheme {
   // coefficient). ownAcceleration: the fluid's own acceleration in the centre cell (share only).
   void centreForce(const std::vector<std::unique_ptr<ForceModel>>& models, const ParticleState& p,
                    const FluidAtParticle& f, const Vec3& ownAcceleration, CentreForce& d,
-                   std::vector<Vec3>& modelForces, Counts& counts) const;
+                   ModelForces& modelForces, Counts& counts) const;
   // At the owner: what the fluid receives for particle p with the centre's force d; applied is
   // what the implicit drag used and gave over the interval just run (null: none behind).
   virtual FluidReaction reaction(const ParticleState& p, const CentreForce& d,

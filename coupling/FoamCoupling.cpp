@@ -71,6 +71,21 @@ LiquidLaw liquidLaw(const Foam::incompressibleTwoPhaseMixture& mixture) {
 }
 }  // namespace
 
+// One exchange's particles: those this rank owns in LIGGGHTS and those whose sphere touches its
+// mesh (ParticleRouting.h), and its rank-local counts. Kept between exchanges so that the
+// particle lists and their cell lists reuse their heap storage; every stage overwrites what it
+// fills.
+struct FoamCoupling::Exchange {
+  std::vector<ParticleState> own;
+  std::vector<std::int64_t> tags;
+  std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
+  std::vector<MeshParticle> here;
+  std::vector<OwnedParticle> owned;
+  DragScheme::Counts counts;
+  double remote = 0;                // owned particles whose centre cell is on another rank
+  std::vector<double> modelTotals;  // per force model (3 each): forces on the owned particles
+};
+
 FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidfraction,
                            Foam::volScalarField& Ksl, Foam::volVectorField& Us,
                            Foam::volVectorField& fSource, Foam::volScalarField& solidResponse,
@@ -216,19 +231,6 @@ FoamCoupling::~FoamCoupling() = default;
 
 Foam::label FoamCoupling::exchangeEvery() const { return props_->exchangeEvery; }
 
-// One exchange's particles: those this rank owns in LIGGGHTS and those whose sphere touches its
-// mesh (ParticleRouting.h), and its rank-local counts.
-struct FoamCoupling::Exchange {
-  std::vector<ParticleState> own;
-  std::vector<std::int64_t> tags;
-  std::vector<AppliedDrag> applied;  // implicit: what the last interval's drag used and gave
-  std::vector<MeshParticle> here;
-  std::vector<OwnedParticle> owned;
-  DragScheme::Counts counts;
-  double remote = 0;                // owned particles whose centre cell is on another rank
-  std::vector<double> modelTotals;  // per force model (3 each): forces on the owned particles
-};
-
 // A resumed run's first interval keeps the drag the stopped run had set for it (read back with
 // the particles' restart, DemLink.h), so it runs as it would have without the stop; the held
 // drag's forces (and a restart without the state) are recomputed from the fluid at the write.
@@ -247,7 +249,10 @@ void FoamCoupling::handToDem(Exchange& x) {
 
 void FoamCoupling::exchange() {
   const double wall0 = MPI_Wtime();
-  Exchange x;
+  if (!exchange_) exchange_ = std::make_unique<Exchange>();
+  Exchange& x = *exchange_;
+  x.counts = DragScheme::Counts();
+  x.remote = 0;
   clock_.time(StageClock::pull, [&] { pull(x); });
   clock_.time(StageClock::locate, [&] { locate(x); });
   clock_.time(StageClock::voidfraction, [&] { voidFraction(x); });
@@ -292,7 +297,7 @@ void FoamCoupling::pull(Exchange& x) {
 }
 
 void FoamCoupling::locate(Exchange& x) {
-  x.here = router_->toMeshes(x.own, x.tags);
+  router_->toMeshes(x.own, x.tags, x.here);
   for (MeshParticle& m : x.here) {
     // Seed: the cell this rank found the particle's centre in at the last exchange.
     const bool known = m.tag >= 0 && static_cast<size_t>(m.tag) < lastCell_.size() &&
@@ -342,7 +347,7 @@ void FoamCoupling::forces(Exchange& x) {
 // Parts and forces to the owners, and what the fluid receives for each owned particle.
 void FoamCoupling::gather(Exchange& x) {
   x.modelTotals.assign(3 * forceModels_.size(), 0.0);
-  x.owned = router_->toOwners(x.here, x.own.size(), forceModels_.size(), x.modelTotals);
+  router_->toOwners(x.here, x.own.size(), forceModels_.size(), x.modelTotals, x.owned);
   sampleHost_.assign(x.own.size(), -1);
   const bool interval = !x.applied.empty() && exchanges_ > 0;  // the first has none behind it
   for (size_t i = 0; i < x.own.size(); ++i) {

@@ -1,6 +1,7 @@
 #include "ForceModel.h"
 
 #include <map>
+#include <stdexcept>
 
 namespace mixflow::coupling {
 
@@ -16,6 +17,9 @@ const std::map<std::string, Factory>& table() {
       {"buoyancy", &makeBuoyancy},
       {"viscousForce", &makeViscousForce},
   };
+  // A case lists each model once: the table bounds the models per case (ModelForces).
+  if (t.size() > kMaxForceModels)
+    throw std::logic_error("ForceModel: more laws than kMaxForceModels; raise it");
   return t;
 }
 }  // namespace

@@ -10,6 +10,7 @@
 // Models are plain C++ (no OpenFOAM): the fluid values come already interpolated.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -65,6 +66,12 @@ struct ParticleForce {
   Vec3 explicitForce;  // every other force on the particle [N]
   Vec3 total(const Vec3& U, const Vec3& v) const { return beta * (U - v) + explicitForce; }
 };
+
+// Each force model's force on one particle, in forceModels order. A fixed array: the exchange
+// keeps one per particle, and a heap vector each was a measurable part of its cost. A case lists
+// each model once, so the run-time selection table's size bounds the count (ForceModel::New).
+constexpr size_t kMaxForceModels = 8;
+using ModelForces = std::array<Vec3, kMaxForceModels>;
 
 class ForceModel {
  public:

@@ -47,7 +47,7 @@ void PartRecord::pack(std::vector<double>& b) const {
   b.push_back(drag.invFluidMass);
   put(b, drag.fluidAcceleration);
   b.push_back(drag.counterflow);
-  for (const Vec3& F : modelForces) put(b, F);
+  for (size_t m = 0; m < nModels; ++m) put(b, modelForces[m]);
 }
 
 PartRecord PartRecord::unpack(const double* r, size_t width) {
@@ -62,7 +62,8 @@ PartRecord PartRecord::unpack(const double* r, size_t width) {
   m.drag.invFluidMass = r[11];
   m.drag.fluidAcceleration = vec(r + 12);
   m.drag.counterflow = r[15];
-  for (size_t k = kHead; k + 3 <= width; k += 3) m.modelForces.push_back(vec(r + k));
+  for (size_t k = kHead; k + 3 <= width && m.nModels < kMaxForceModels; k += 3)
+    m.modelForces[m.nModels++] = vec(r + k);
   return m;
 }
 
@@ -100,8 +101,9 @@ ParticleRouter::ParticleRouter(const double lo[3], const double hi[3], MPI_Comm 
   MPI_Allgather(mine, 6, MPI_DOUBLE, boxes_.data(), 6, MPI_DOUBLE, comm_);
 }
 
-std::vector<MeshParticle> ParticleRouter::toMeshes(const std::vector<ParticleState>& own,
-                                                   const std::vector<std::int64_t>& tags) const {
+void ParticleRouter::toMeshes(const std::vector<ParticleState>& own,
+                              const std::vector<std::int64_t>& tags,
+                              std::vector<MeshParticle>& here) const {
   std::vector<std::vector<ParticleRecord>> send(size_);
   for (size_t i = 0; i < own.size(); ++i)
     for (int q = 0; q < size_; ++q) {
@@ -111,25 +113,27 @@ std::vector<MeshParticle> ParticleRouter::toMeshes(const std::vector<ParticleSta
       send[q].push_back({static_cast<long>(i), tags[i], own[i]});
     }
   const auto in = route(std::move(send), ParticleRecord::kWidth);
-  std::vector<MeshParticle> here;
   size_t total = 0;
   for (const auto& records : in) total += records.size();
-  here.reserve(total);
+  here.resize(total);
+  size_t k = 0;
   for (int q = 0; q < size_; ++q)
     for (const ParticleRecord& r : in[q]) {
-      MeshParticle m;
+      MeshParticle& m = here[k++];
       m.owner = q;
       m.ownerIndex = r.ownerIndex;
       m.tag = r.tag;
       m.p = r.p;
-      here.push_back(std::move(m));
+      m.cells.clear();
+      m.fluid = FluidAtParticle();
+      m.drag = CentreForce();
+      m.modelForces = ModelForces();
     }
-  return here;
 }
 
-std::vector<OwnedParticle> ParticleRouter::toOwners(const std::vector<MeshParticle>& here,
-                                                    size_t nOwn, size_t nModels,
-                                                    std::vector<double>& modelTotals) const {
+void ParticleRouter::toOwners(const std::vector<MeshParticle>& here, size_t nOwn, size_t nModels,
+                              std::vector<double>& modelTotals,
+                              std::vector<OwnedParticle>& owned) const {
   std::vector<std::vector<PartRecord>> send(size_);
   for (size_t k = 0; k < here.size(); ++k) {
     const MeshParticle& m = here[k];
@@ -140,10 +144,19 @@ std::vector<OwnedParticle> ParticleRouter::toOwners(const std::vector<MeshPartic
     r.ownerIndex = m.ownerIndex;
     r.workIndex = static_cast<long>(k);
     r.drag = m.drag;
-    r.modelForces = r.centre ? m.modelForces : std::vector<Vec3>(nModels);
-    send[m.owner].push_back(std::move(r));
+    r.nModels = nModels;
+    if (r.centre) r.modelForces = m.modelForces;
+    send[m.owner].push_back(r);
   }
-  std::vector<OwnedParticle> owned(nOwn);
+  owned.resize(nOwn);
+  for (OwnedParticle& o : owned) {
+    o.parts.clear();
+    o.inside = 0;
+    o.host = -1;
+    o.drag = CentreForce();
+    o.reaction = FluidReaction();
+    o.sigma = 0;
+  }
   const auto in = route(std::move(send), PartRecord::width(nModels));
   for (int q = 0; q < size_; ++q)  // rank order: the first centre holder is the lowest rank
     for (const PartRecord& r : in[q]) {
@@ -157,7 +170,6 @@ std::vector<OwnedParticle> ParticleRouter::toOwners(const std::vector<MeshPartic
           for (int a = 0; a < 3; ++a) modelTotals[3 * m + a] += r.modelForces[m][a];
       }
     }
-  return owned;
 }
 
 std::vector<ReactionRecord> ParticleRouter::toParts(const std::vector<OwnedParticle>& owned) const {

@@ -56,7 +56,8 @@ struct PartRecord {
   double inside = 0;    // volume found in the reporting rank's cells [m3]
   bool centre = false;  // the reporting rank holds the centre
   CentreForce drag;
-  std::vector<Vec3> modelForces;  // per force model (zero without the centre)
+  size_t nModels = 0;       // force models in modelForces (on the wire: width - kHead over 3)
+  ModelForces modelForces;  // per force model (zero without the centre)
   void pack(std::vector<double>& b) const;
   static PartRecord unpack(const double* r, size_t width);
 };
@@ -96,7 +97,7 @@ struct MeshParticle {
   ParticleCells cells;
   FluidAtParticle fluid;  // at the centre (centre holder only)
   CentreForce drag;       // centre holder only
-  std::vector<Vec3> modelForces;
+  ModelForces modelForces;
 };
 
 // A particle this rank owns in LIGGGHTS, assembled from the R2 reports.
@@ -122,15 +123,17 @@ class ParticleRouter {
   int rank() const { return rank_; }
   int size() const { return size_; }
 
-  // R1: the owned particles to the ranks whose mesh they touch; returns those received here, in
-  // rank order.
-  std::vector<MeshParticle> toMeshes(const std::vector<ParticleState>& own,
-                                     const std::vector<std::int64_t>& tags) const;
-  // R2: the parts found here to their owners; the owner's particles with their parts, force
-  // from the lowest rank holding the centre. modelTotals (3 per model) adds that force's
-  // per-model parts.
-  std::vector<OwnedParticle> toOwners(const std::vector<MeshParticle>& here, size_t nOwn,
-                                      size_t nModels, std::vector<double>& modelTotals) const;
+  // The two output lists below are the caller's, kept between exchanges: their elements are
+  // reset, not rebuilt, so their cell and part lists keep their heap storage.
+  // R1: the owned particles to the ranks whose mesh they touch; `here` becomes those received
+  // here, in rank order, with no cells, fluid or forces yet.
+  void toMeshes(const std::vector<ParticleState>& own, const std::vector<std::int64_t>& tags,
+                std::vector<MeshParticle>& here) const;
+  // R2: the parts found here to their owners; `owned` becomes the owner's particles with their
+  // parts, force from the lowest rank holding the centre. modelTotals (3 per model) adds that
+  // force's per-model parts.
+  void toOwners(const std::vector<MeshParticle>& here, size_t nOwn, size_t nModels,
+                std::vector<double>& modelTotals, std::vector<OwnedParticle>& owned) const;
   // R3: each owned particle's reaction to the ranks holding its parts; returns the records
   // received here, in rank order.
   std::vector<ReactionRecord> toParts(const std::vector<OwnedParticle>& owned) const;

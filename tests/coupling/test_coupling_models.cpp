@@ -654,7 +654,9 @@ TEST(ParticleRouting, RecordsRoundTrip) {
   r2.inside = 0.25;
   r2.centre = true;
   r2.drag = CentreForce{ParticleForce{0.5, Vec3(1, 2, 3)}, Vec3(4, 5, 6), 7, Vec3(8, 9, 10), 11};
-  r2.modelForces = {Vec3(12, 13, 14), Vec3(15, 16, 17)};
+  r2.nModels = 2;
+  r2.modelForces[0] = Vec3(12, 13, 14);
+  r2.modelForces[1] = Vec3(15, 16, 17);
   b.clear();
   r2.pack(b);
   ASSERT_EQ(b.size(), PartRecord::width(2));
@@ -666,7 +668,7 @@ TEST(ParticleRouting, RecordsRoundTrip) {
   EXPECT_EQ(u2.drag.invFluidMass, 7);
   EXPECT_EQ(u2.drag.fluidAcceleration.y, 9);
   EXPECT_EQ(u2.drag.counterflow, 11);
-  ASSERT_EQ(u2.modelForces.size(), 2u);
+  ASSERT_EQ(u2.nModels, 2u);
   EXPECT_EQ(u2.modelForces[1].z, 17);
 
   ReactionRecord r3{5,
