@@ -67,10 +67,10 @@ struct ParticleForce {
   Vec3 total(const Vec3& U, const Vec3& v) const { return beta * (U - v) + explicitForce; }
 };
 
-// Each force model's force on one particle, in forceModels order. A fixed array: the exchange
-// keeps one per particle, and a heap vector each was a measurable part of its cost. A case lists
-// each model once, so the run-time selection table's size bounds the count (ForceModel::New).
-constexpr size_t kMaxForceModels = 8;
+// Each force model's force on one particle, in forceModels order: a fixed array, so the exchange's
+// per-particle records need no heap storage. A case lists each model once, so the run-time
+// selection table's size (checked against this bound, ForceModel.cpp) bounds the count.
+constexpr size_t kMaxForceModels = 4;
 using ModelForces = std::array<Vec3, kMaxForceModels>;
 
 class ForceModel {

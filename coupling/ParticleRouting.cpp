@@ -105,6 +105,7 @@ void ParticleRouter::toMeshes(const std::vector<ParticleState>& own,
                               const std::vector<std::int64_t>& tags,
                               std::vector<MeshParticle>& here) const {
   std::vector<std::vector<ParticleRecord>> send(size_);
+  send[rank_].reserve(own.size());  // every owned particle goes to its owner's mesh too
   for (size_t i = 0; i < own.size(); ++i)
     for (int q = 0; q < size_; ++q) {
       if (q != rank_ &&
@@ -134,7 +135,13 @@ void ParticleRouter::toMeshes(const std::vector<ParticleState>& own,
 void ParticleRouter::toOwners(const std::vector<MeshParticle>& here, size_t nOwn, size_t nModels,
                               std::vector<double>& modelTotals,
                               std::vector<OwnedParticle>& owned) const {
+  // Reserved: a part record is large (ModelForces), and growing the lists copies them.
   std::vector<std::vector<PartRecord>> send(size_);
+  {
+    std::vector<size_t> count(size_, 0);
+    for (const MeshParticle& m : here) ++count[m.owner];
+    for (int q = 0; q < size_; ++q) send[q].reserve(count[q]);
+  }
   for (size_t k = 0; k < here.size(); ++k) {
     const MeshParticle& m = here[k];
     PartRecord r;
@@ -174,6 +181,7 @@ void ParticleRouter::toOwners(const std::vector<MeshParticle>& here, size_t nOwn
 
 std::vector<ReactionRecord> ParticleRouter::toParts(const std::vector<OwnedParticle>& owned) const {
   std::vector<std::vector<ReactionRecord>> send(size_);
+  send[rank_].reserve(owned.size());
   for (const OwnedParticle& o : owned) {
     if (o.host < 0) continue;
     bool hostDone = false;
