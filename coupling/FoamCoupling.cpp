@@ -164,6 +164,7 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
                << zHi << " are wrapped into the mesh" << Foam::endl;
   }
   locator_ = std::move(locator);
+  exchange_ = std::make_unique<Exchange>();
   // Every rank's (sub)mesh box, inflated like the locator's: where R1 sends a particle.
   {
     const Foam::boundBox local(mesh_.points(), false);
@@ -249,7 +250,6 @@ void FoamCoupling::handToDem(Exchange& x) {
 
 void FoamCoupling::exchange() {
   const double wall0 = MPI_Wtime();
-  if (!exchange_) exchange_ = std::make_unique<Exchange>();
   Exchange& x = *exchange_;
   x.counts = DragScheme::Counts();
   x.remote = 0;
