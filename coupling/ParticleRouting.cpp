@@ -121,14 +121,11 @@ void ParticleRouter::toMeshes(const std::vector<ParticleState>& own,
   for (int q = 0; q < size_; ++q)
     for (const ParticleRecord& r : in[q]) {
       MeshParticle& m = here[k++];
+      m.reset();
       m.owner = q;
       m.ownerIndex = r.ownerIndex;
       m.tag = r.tag;
       m.p = r.p;
-      m.cells.clear();
-      m.fluid = FluidAtParticle();
-      m.drag = CentreForce();
-      m.modelForces = ModelForces();
     }
 }
 
@@ -156,14 +153,7 @@ void ParticleRouter::toOwners(const std::vector<MeshParticle>& here, size_t nOwn
     send[m.owner].push_back(r);
   }
   owned.resize(nOwn);
-  for (OwnedParticle& o : owned) {
-    o.parts.clear();
-    o.inside = 0;
-    o.host = -1;
-    o.drag = CentreForce();
-    o.reaction = FluidReaction();
-    o.sigma = 0;
-  }
+  for (OwnedParticle& o : owned) o.reset();
   const auto in = route(std::move(send), PartRecord::width(nModels));
   for (int q = 0; q < size_; ++q)  // rank order: the first centre holder is the lowest rank
     for (const PartRecord& r : in[q]) {

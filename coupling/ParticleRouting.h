@@ -12,6 +12,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "ForceModel.h"
@@ -98,6 +99,14 @@ struct MeshParticle {
   FluidAtParticle fluid;  // at the centre (centre holder only)
   CentreForce drag;       // centre holder only
   ModelForces modelForces;
+  // Every field back to its default, the cell list's heap storage kept (lists reused between
+  // exchanges).
+  void reset() {
+    auto volumes = std::move(cells.volumes);
+    volumes.clear();
+    *this = MeshParticle();
+    cells.volumes = std::move(volumes);
+  }
 };
 
 // A particle this rank owns in LIGGGHTS, assembled from the R2 reports.
@@ -114,6 +123,13 @@ struct OwnedParticle {
   CentreForce drag;
   FluidReaction reaction;
   double sigma = 0;
+  // Every field back to its default, the part list's heap storage kept.
+  void reset() {
+    auto kept = std::move(parts);
+    kept.clear();
+    *this = OwnedParticle();
+    parts = std::move(kept);
+  }
 };
 
 class ParticleRouter {
