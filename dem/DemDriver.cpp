@@ -374,6 +374,7 @@ void DemDriver::writeSettledState(const SettleReport& st) {
     writeSettledDict(f, recorded);
   }
   std::ofstream(dir / "settled.inputs") << inputs;
+  std::ofstream(dir / "settled.entries") << settleEntries(scene_);
   fs::rename(dir / "settled.state.tmp", dir / "settled.state");
 }
 

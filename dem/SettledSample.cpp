@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
+#include "DemDict.h"
 #include "DemDriver.h"
 #include "Dictionary.h"
 #include "LiggghtsCommands.h"
 #include "SampleFill.h"
+#include "SceneProperties.h"
+#include "Schema.h"
 
 namespace mixflow::dem {
 
@@ -100,37 +105,166 @@ std::string firstDifference(const std::string& here, const std::string& there) {
   }
 }
 
+namespace {
+// The dictionary at the dotted section path of root ("" itself); absent parts are empty.
+Dictionary sectionOf(const Dictionary& root, const std::string& section) {
+  Dictionary d = root;
+  size_t from = 0;
+  while (from < section.size()) {
+    const size_t dot = section.find('.', from);
+    const std::string key = section.substr(from, dot == std::string::npos ? dot : dot - from);
+    d = d.subDictOrEmpty(key);
+    from = dot == std::string::npos ? section.size() : dot + 1;
+  }
+  return d;
+}
+
+// v with the fewest significant digits that read back as v (0.45, not 0.45000000000000001).
+std::string exactNumber(double v) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const std::string s = formatNumber(v, digits);
+    if (std::strtod(s.c_str(), nullptr) == v) return s;
+  }
+  return formatNumber(v, 17);
+}
+
+// Each declared entry of the given sections as "file path value", read as the programs read it.
+void addEntries(std::ostringstream& out, const Schema& sc, const Dictionary& root,
+                const std::vector<std::string>& sections) {
+  for (const Param& p : sc.params()) {
+    if (std::find(sections.begin(), sections.end(), p.section()) == sections.end()) continue;
+    const Dictionary d = sectionOf(root, p.section());
+    std::string v;
+    try {
+      switch (p.type) {
+        case Param::Type::Scalar:
+          if (p.autoDefault) {
+            const auto a = sc.scalarOrAuto(d, p.path);
+            v = a ? exactNumber(*a) : "auto";
+          } else {
+            v = exactNumber(sc.scalar(d, p.path));
+          }
+          break;
+        case Param::Type::Integer:
+          if (p.autoDefault) {
+            const auto a = sc.integerOrAuto(d, p.path);
+            v = a ? std::to_string(*a) : "auto";
+          } else {
+            v = std::to_string(sc.integer(d, p.path));
+          }
+          break;
+        case Param::Type::Word:
+          v = sc.word(d, p.path);
+          break;
+        case Param::Type::Switch:
+          v = sc.flag(d, p.path) ? "on" : "off";
+          break;
+        case Param::Type::Text:
+          v = sc.text(d, p.path);
+          break;
+        default:
+          continue;
+      }
+    } catch (const InputError&) {
+      v = "(not read)";  // e.g. an entry of another selector value
+    }
+    out << sc.file() << ' ' << p.path << ' ' << v << '\n';
+  }
+}
+
+// "file path" -> value of a settleEntries text.
+std::map<std::string, std::string> entryMap(const std::string& text) {
+  std::map<std::string, std::string> m;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const size_t a = line.find(' ');
+    const size_t b = a == std::string::npos ? a : line.find(' ', a + 1);
+    if (b == std::string::npos) continue;
+    m[line.substr(0, b)] = line.substr(b + 1);
+  }
+  return m;
+}
+}  // namespace
+
+std::string settleEntries(const Scene& s) {
+  std::ostringstream out;
+  const fs::path dir(s.caseDir);
+  addEntries(out, SceneProperties::schema(),
+             Dictionary::readFile((dir / "constant/sceneProperties").string()),
+             {"sample", "channel", "particles"});
+  const fs::path demDict = dir / "system/demDict";
+  addEntries(out, DemDict::schema(),
+             fs::exists(demDict) ? Dictionary::readFile(demDict.string())
+                                 : Dictionary::parse("", demDict.string()),
+             {"", "velocityProfile", "savage", "settle"});
+  return out.str();
+}
+
+std::string entriesDifference(const std::string& here, const std::string& there) {
+  const auto a = entryMap(here), b = entryMap(there);
+  std::string out;
+  for (const auto& [key, value] : a) {
+    const auto it = b.find(key);
+    const std::string other = it == b.end() ? "(none)" : it->second;
+    if (other == value) continue;
+    const size_t sp = key.find(' ');
+    out += (out.empty() ? "" : "; ") + key.substr(0, sp) + " entry '" + key.substr(sp + 1) +
+           "': " + value + " in this case, " + other + " in the sample";
+  }
+  return out;
+}
+
 std::string inputsMismatch(const std::string& here, const std::string& fingerprint,
-                           const std::string& recordedInputs) {
+                           const std::string& recordedInputs, const std::string& hereEntries,
+                           const std::string& recordedEntries) {
   const std::string mine = fingerprintOf(here);
   if (fingerprint == mine) return "";
   std::string why = "fingerprint '" + fingerprint + "' is not this settling's '" + mine + "'";
+  const std::string entries =
+      !hereEntries.empty() && !recordedEntries.empty() && fs::exists(recordedEntries)
+          ? entriesDifference(hereEntries, readText(recordedEntries))
+          : "";
+  if (!entries.empty()) why += "; entries that differ: " + entries;
   if (fs::exists(recordedInputs))
-    why += "; first difference (this case against the sample): " +
+    why += "; first difference of the inputs (this case against the sample): " +
            firstDifference(here, readText(recordedInputs));
   return why;
 }
 
-SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank) {
+SettleReport checkSettledSample(const Scene& s, const std::string& dir) {
   const fs::path from(dir);
   const fs::path statePath = from / "settled.state";
   if (!fs::exists(statePath))
     throw InputError(statePath.string() + ": cannot open file: no settled sample to reuse there");
   const Dictionary st = Dictionary::readFile(statePath.string());
   const SettleReport r = readSettledDict(st.subDict("settled"));
-  const std::string here = settleInputs(s);
+  const fs::path restart = from / "settled.restart";
+  if (!fs::exists(restart))
+    throw InputError(restart.string() + ": cannot open file: " + statePath.string() +
+                     " has no restart file beside it, so there is no settled sample to reuse "
+                     "there; settle again (without SETTLED_DIR), or name the dem/ directory of a "
+                     "run that settled");
   if (r.fingerprint.empty())
     throw InputError(statePath.string() +
                      ": entry 'settled/fingerprint' is missing: the sample was settled before "
                      "mixflow recorded its inputs, so whether it is this case's cannot be "
                      "checked; settle again (without reusing)");
-  const std::string why = inputsMismatch(here, r.fingerprint, (from / "settled.inputs").string());
+  const std::string why =
+      inputsMismatch(settleInputs(s), r.fingerprint, (from / "settled.inputs").string(),
+                     settleEntries(s), (from / "settled.entries").string());
   if (!why.empty())
     throw InputError(statePath.string() + ": entry 'settled/fingerprint': " + why +
                      ": the sample was made with other particles, walls, contacts, DEM step or "
                      "settling settings. Settle again (without reusing)");
+  return r;
+}
+
+SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank) {
+  const SettleReport r = checkSettledSample(s, dir);
+  const fs::path from(dir);
+  const fs::path statePath = from / "settled.state";
   const fs::path restart = from / "settled.restart";
-  if (!fs::exists(restart)) throw InputError(restart.string() + ": cannot open file");
+  const std::string here = settleInputs(s);
   const fs::path to = fs::path(s.caseDir) / "dem";
   const bool same = fs::exists(to) && fs::equivalent(from, to);
   if (rank == 0 && !same) {
@@ -144,6 +278,7 @@ SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank
       if (line.rfind("reusedFrom", 0) != 0) copy << line << '\n';
     copy << "reusedFrom \"" << fs::absolute(from).lexically_normal().string() << "\";\n";
     std::ofstream(to / "settled.inputs") << here;
+    std::ofstream(to / "settled.entries") << settleEntries(s);
   }
   return r;
 }

@@ -31,16 +31,33 @@ std::string fingerprintOf(const std::string& text);
 // The first line where two inputs texts differ, as "'here' against 'there'" (empty if equal).
 std::string firstDifference(const std::string& here, const std::string& there);
 
-// Empty if fingerprint is that of `here` (a case's settleInputs); else why not: "fingerprint
-// 'F' is not this settling's 'G'", with the first differing line when the sample's recorded
-// inputs file (its settled.inputs) exists. Used where a sample is reused and where it is prepared.
-std::string inputsMismatch(const std::string& here, const std::string& fingerprint,
-                           const std::string& recordedInputs);
+// The entries of the case's constant/sceneProperties (sample, channel, particles) and
+// system/demDict as read (defaults included), one "file entry value" a line. Written beside a
+// settled sample (settled.entries; not part of its fingerprint), so that a sample made from
+// other inputs is refused naming the entries that differ, not only a hash.
+std::string settleEntries(const Scene& s);
 
-// Takes the settled sample of directory dir (settled.{restart,state,inputs}, e.g. another run's
-// dem/) into s's case when its fingerprint is that of s's settling; otherwise throws InputError
-// naming dir/settled.state, the entry 'fingerprint' and the first input that differs. Every rank
-// checks; rank 0 copies. Returns the sample's report.
+// The entries of two settleEntries texts that differ, as "file entry: A here, B in the sample"
+// joined by "; " (empty if none differs).
+std::string entriesDifference(const std::string& here, const std::string& there);
+
+// Empty if fingerprint is that of `here` (a case's settleInputs); else why not: "fingerprint
+// 'F' is not this settling's 'G'", with the entries that differ when the sample's recorded
+// entries (recordedEntries, its settled.entries) exist and differ from hereEntries, and the
+// first differing line when its recorded inputs file (settled.inputs) exists. Used where a sample
+// is reused and where it is prepared.
+std::string inputsMismatch(const std::string& here, const std::string& fingerprint,
+                           const std::string& recordedInputs, const std::string& hereEntries = "",
+                           const std::string& recordedEntries = "");
+
+// The settled sample of directory dir (settled.{restart,state,inputs,entries}, e.g. another
+// run's dem/) if s's case can take it: its restart file is there and its fingerprint is that of
+// s's settling; otherwise throws InputError naming the file, the entry 'fingerprint' and the
+// entries (or first input) that differ. Copies nothing (mixflowDem -check -reuse).
+SettleReport checkSettledSample(const Scene& s, const std::string& dir);
+
+// checkSettledSample, then takes the sample into s's case: every rank checks; rank 0 copies.
+// Returns the sample's report.
 SettleReport reuseSettledSample(const Scene& s, const std::string& dir, int rank);
 
 }  // namespace mixflow::dem

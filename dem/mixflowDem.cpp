@@ -6,6 +6,8 @@
 // step of a mixture scene, whose collapse runs in mixflowCoupled (a mixture case's Allrun).
 // -settleOnly -reuse DIR takes the sample settled in DIR (another run's dem/) instead, when it was
 // made from this case's settling inputs (dem/SettledSample.h); otherwise it stops and says why.
+// -check -settleOnly -reuse DIR checks that sample (restart file, settling inputs) without
+// copying it: the Allrun of a mixture case does so before it moves anything.
 #include <mpi.h>
 
 #include <cstring>
@@ -33,7 +35,7 @@ void usage() {
                "  -reuse DIR2 (with -settleOnly) takes the sample settled in DIR2 (e.g. another\n"
                "  run's dem/) when its fingerprint shows the same settling inputs (fill,\n"
                "  contacts, walls, DEM step, settling settings), else stops naming the first\n"
-               "  difference.\n";
+               "  difference; with -check it checks that sample, copying nothing.\n";
 }
 }  // namespace
 
@@ -85,7 +87,14 @@ int main(int argc, char** argv) {
       std::cout << "[mixflowDem] warning: " << scene.autoStepWarning() << std::endl;
     if (!reuseDir.empty() && !settleOnly)
       throw InputError("mixflowDem: option -reuse " + reuseDir + " needs -settleOnly");
-    if (!checkOnly && settleOnly && !reuseDir.empty()) {
+    if (checkOnly && !reuseDir.empty()) {
+      // The sample to reuse is checked before anything is moved or run (Allrun SETTLED_DIR).
+      const dem::SettleReport r = dem::checkSettledSample(scene, reuseDir);
+      if (rank == 0)
+        std::cout << "[mixflowDem] the settled sample of " << reuseDir << " (fingerprint "
+                  << r.fingerprint << ", " << r.particles
+                  << " particles) was settled from this case's settling inputs" << std::endl;
+    } else if (!checkOnly && settleOnly && !reuseDir.empty()) {
       const dem::SettleReport r = dem::reuseSettledSample(scene, reuseDir, rank);
       MPI_Barrier(MPI_COMM_WORLD);  // rank 0's copy is complete before anyone goes on
       if (rank == 0)

@@ -236,9 +236,10 @@ MixtureSetup prepareMixture(LiquidCase& c) {
   // overlaps and a box made for others (dem/SettledSample.h). Samples settled before the inputs
   // were recorded have no fingerprint and are taken as they are.
   if (!settled.fingerprint.empty()) {
-    const std::string why =
-        dem::inputsMismatch(dem::settleInputs(scene), settled.fingerprint,
-                            (fs::path(c.caseDir) / "dem" / "settled.inputs").string());
+    const std::string why = dem::inputsMismatch(
+        dem::settleInputs(scene), settled.fingerprint,
+        (fs::path(c.caseDir) / "dem" / "settled.inputs").string(), dem::settleEntries(scene),
+        (fs::path(c.caseDir) / "dem" / "settled.entries").string());
     if (!why.empty())
       throw InputError(statePath.string() + ": entry 'settled/fingerprint': " + why +
                        ": the sample was settled from other DEM inputs than the case now has. "
