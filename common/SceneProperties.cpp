@@ -10,6 +10,20 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string num(double v) { return formatNumber(v, 6); }
 
+// Plausible ranges (Param::plausible): values outside are refused as unit slips before anything
+// runs. Lengths of a laboratory or field scene; moduli from soft rubber (1e5 Pa) to diamond
+// (1.2e12 Pa); liquids from liquid hydrogen (71 kg/m3, 1.3e-5 Pa s) on; a gas pore fluid (the
+// bulk model's dry scene P-bulk: air) has density <= kGasDensityMax and viscosity
+// <= kGasViscosityMax.
+const Range kLengths = Range::closed(1e-3, 100.0);
+const std::vector<UnitSlip> kLengthSlips{{"mm", 1e-3}, {"cm", 1e-2}};
+const Range kModuli = Range::closed(1e5, 1.2e12);
+const std::vector<UnitSlip> kModulusSlips{{"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
+constexpr double kLiquidDensityMin = 50;
+constexpr double kLiquidViscosityMin = 1e-5;
+constexpr double kGasDensityMax = 10;
+constexpr double kGasViscosityMax = 1e-4;
+
 Schema makeSchema() {
   const SampleSpec s{};
   const ChannelSpec c{};
@@ -27,12 +41,15 @@ Schema makeSchema() {
           dictParam("sample", "the column behind the gate at x = L; back wall at x = 0"),
           requiredScalar("sample.length", Range::positive(), "m",
                          "L of the column behind the gate (back wall at x = 0, gate at x = L)")
-              .alsoAllowed("≥ d with grains"),
+              .alsoAllowed("≥ d with grains")
+              .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           requiredScalar("sample.height", Range::positive(), "m", "H of the column")
-              .alsoAllowed("≥ d with grains"),
+              .alsoAllowed("≥ d with grains")
+              .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           requiredScalar("sample.width", Range::positive(), "m",
                          "W; also the channel width (side walls at z = 0, W)")
-              .alsoAllowed("≥ d with grains"),
+              .alsoAllowed("≥ d with grains")
+              .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           // Above random close packing (0.64) a monodisperse sample cannot be made by settling.
           scalarParam("sample.solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64), "",
                       "target φ of the grains: N = φ L H W / V_p particles (Li & Zhao). It sets "
@@ -45,30 +62,37 @@ Schema makeSchema() {
                          "x of the outlet: particles beyond are deleted, the liquid leaves "
                          "(zero-gradient U and p). Paper: not given; the dry cases use 4.0 m, "
                          "the liquid and mixture cases 5.86 m (calibrated with case W, below)")
-              .alsoAllowed("> L (with grains > L + d)"),
+              .alsoAllowed("> L (with grains > L + d)")
+              .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           requiredScalar("channel.height", Range::positive(), "m",
                          "y of the open top: particles above are deleted, the atmosphere of the "
                          "liquid. It must lie above the column: a liquid needs air above it, and "
                          "grains standing at H are not deleted. Paper: not given; cases use 1.2 m")
-              .alsoAllowed("> H"),
+              .alsoAllowed("> H")
+              .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           wordParam("channel.sideWalls", c.sideWalls, {"walls", "periodic"},
                     "walls: frictional (grains) and no-slip (liquid) side walls at z = 0, W "
                     "(paper); periodic: an infinitely wide channel (cyclic z faces of a 3-D "
                     "liquid). 2-D liquid: ignored (no side walls)"),
           dictParam("particles", "the grains (Table 3); moduli before softening"),
-          scalarParam("particles.diameter", p.diameter, Range::positive(), "m", "d (Table 3)"),
+          scalarParam("particles.diameter", p.diameter, Range::positive(), "m", "d (Table 3)")
+              .plausible(Range::closed(1e-5, 0.5), "a grain, from silt to boulders",
+                         {{"mm", 1e-3}, {"cm", 1e-2}}),
           // Grains from expanded polystyrene beads to osmium; one like 1e300 overflows the
           // particle mass inside LIGGGHTS.
           scalarParam("particles.density", p.density, Range::closed(10.0, 25000.0), "kg/m3",
                       "solid grains from expanded polystyrene beads (about 15) to osmium "
                       "(22 600); a value outside is a typo, and one like 1e300 overflows the "
-                      "particle mass inside LIGGGHTS"),
+                      "particle mass inside LIGGGHTS")
+              .plausible(Range::closed(10.0, 25000.0), "a solid grain", {{"g/cm³", 1e3}}),
           scalarParam("particles.youngModulus", p.youngModulus, Range::positive(), "Pa",
-                      "particle material (before softening)"),
+                      "particle material (before softening)")
+              .plausible(kModuli, "a grain's material, from soft rubber to diamond", kModulusSlips),
           scalarParam("particles.wallYoungModulus", p.wallYoungModulus, Range::positive(), "Pa",
                       "wall material. **Open choice**: the paper's \"700 GPa (particle-wall)\" is "
                       "taken as the wall material's modulus, so the particle-wall contact modulus "
-                      "E* is 6.99e10 Pa, not 700 GPa"),
+                      "E* is 6.99e10 Pa, not 700 GPa")
+              .plausible(kModuli, "a wall's material, from soft rubber to diamond", kModulusSlips),
           scalarParam("particles.poissonRatio", p.poisson, {0.0, 0.5, false, true}, "",
                       "both materials"),
           // LIGGGHTS' damping formula needs e > 0; e = 1 is elastic.
@@ -90,8 +114,18 @@ Schema makeSchema() {
           requiredWord("liquid.rheology", {"Newtonian", "HerschelBulkley", "Bingham"},
                        "τ = τc + κ γ̇ⁿ (docs/model.md §5)"),
           requiredScalar("liquid.density", Range::positive(), "kg/m3", "ρ")
-              .alsoAllowed("> air density"),
+              .alsoAllowed("> air density")
+              .plausible(Range::closed(kLiquidDensityMin, 25000.0),
+                         "a liquid, from liquid hydrogen (71) to mercury (13 534) and beyond; a "
+                         "gas pore fluid (density ≤ 10, Newtonian viscosity ≤ 1e-4 Pa s, e.g. "
+                         "air in cases/P-bulk) is taken too",
+                         {{"g/cm³", 1e3}}, true),
           requiredScalar("liquid.viscosity", Range::positive(), "Pa s", "μ")
+              .plausible(Range::closed(kLiquidViscosityMin, 1e8),
+                         "a liquid's dynamic viscosity, from liquid hydrogen (1.3e-5) to pitch; "
+                         "a value that is ρ ν in range (ν typed in m²/s) is named so; not checked "
+                         "for a gas pore fluid",
+                         {{"mPa s", 1e-3}}, true)
               .only({"Newtonian"})
               .shownDefault("(required, Newtonian only)"),
           requiredScalar("liquid.yieldStress", Range::nonNegative(), "Pa", "τc")
@@ -222,6 +256,30 @@ void readLiquid(const Schema& sc, const Dictionary& d, SceneProperties& s) {
   if (s.air.density >= r.density)
     d.fail("density", "value " + num(r.density) + " must exceed the air density (" +
                           num(s.air.density) + " kg/m3): the liquid lies under the air");
+  // Plausibility: a liquid, or a gas pore fluid (light and thin: air in a dry bulk-model scene).
+  const bool gas =
+      r.model == "Newtonian" && r.density <= kGasDensityMax && r.viscosity <= kGasViscosityMax;
+  if (gas) return;
+  if (r.density <= kGasDensityMax && r.model == "Newtonian" && r.viscosity > kGasViscosityMax &&
+      !sc.param("liquid.density").slipHint(r.density).empty())
+    d.fail("density", "value " + num(r.density) + " kg/m3 is a gas's density, but viscosity " +
+                          num(r.viscosity) + " Pa s is a liquid's" +
+                          sc.param("liquid.density").slipHint(r.density) +
+                          "; a liquid's plausible range is [" + num(kLiquidDensityMin) +
+                          ", 25000] kg/m3, a gas pore fluid's (0, " + num(kGasDensityMax) +
+                          "] kg/m3 with viscosity <= " + num(kGasViscosityMax) +
+                          " Pa s (docs/parameters.md, \"Plausible ranges\")");
+  sc.checkPlausible(d, "liquid.density", r.density);
+  if (r.model == "Newtonian" &&
+      !sc.param("liquid.viscosity").plausibleRange->contains(r.viscosity) &&
+      r.viscosity * r.density >= kLiquidViscosityMin && r.viscosity < kLiquidViscosityMin)
+    d.fail("viscosity",
+           "value " + num(r.viscosity) + " Pa s is outside the plausible range " + "[" +
+               num(kLiquidViscosityMin) + ", 1e8]" +
+               " Pa s of a liquid's dynamic viscosity (a unit slip? as the kinematic viscosity "
+               "ν in m2/s it gives μ = ρ ν = " +
+               num(r.viscosity * r.density) + " Pa s); write μ in Pa s");
+  if (r.model == "Newtonian") sc.checkPlausible(d, "liquid.viscosity", r.viscosity);
 }
 
 // Rules between entries. The outlet lies downstream of the gate, beyond the front grain when

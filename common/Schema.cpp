@@ -31,6 +31,32 @@ Param& Param::shownDefault(std::string note) {
   defaultNote = std::move(note);
   return *this;
 }
+Param& Param::plausible(Range r, std::string what, std::vector<UnitSlip> units, bool byReader) {
+  plausibleRange = r;
+  plausibleFor = std::move(what);
+  slips = std::move(units);
+  plausibleByReader = byReader;
+  return *this;
+}
+
+namespace {
+// "[1e5, 1.2e12]": a range with the numbers as the docs write them.
+std::string plainRange(const Range& r) {
+  return (r.loOpen ? "(" : "[") + docNumber(r.lo) + ", " + docNumber(r.hi) + (r.hiOpen ? ")" : "]");
+}
+}  // namespace
+
+std::string Param::slipHint(double v) const {
+  if (!plausibleRange || !std::isfinite(v)) return "";
+  std::string hint;
+  for (const auto& s : slips) {
+    const double si = v * s.factor;
+    if (!plausibleRange->contains(si)) continue;
+    hint += (hint.empty() ? "" : ", or ") + std::string("typed in ") + s.unit + ", it is " +
+            docNumber(si) + (unit.empty() ? "" : " " + unit);
+  }
+  return hint.empty() ? "" : " (a unit slip? " + hint + ")";
+}
 
 namespace {
 Param make(std::string path, Param::Type type, std::string meaning) {
@@ -214,11 +240,36 @@ void Schema::allowOnly(const Dictionary& d, const std::string& section) const {
 double Schema::scalar(const Dictionary& d, const std::string& path) const {
   const Param& p = typed(path, Param::Type::Scalar);
   const std::string k = p.key();
-  if (!p.required) return d.scalarOr(k, p.number, p.range);
-  if (!d.has(k))
+  if (p.required && !d.has(k))
     d.fail(k, "missing (required)" + (p.unit.empty() ? "" : " in " + p.unit) + ", allowed range " +
                   p.range.str());
-  return d.scalar(k, p.range);
+  double v = 0;
+  try {
+    v = p.required ? d.scalar(k, p.range) : d.scalarOr(k, p.number, p.range);
+  } catch (const InputError& e) {
+    // Outside the allowed range: say which unit would explain it, when one would.
+    double raw = 0;
+    try {
+      raw = d.scalar(k, Range::any());
+    } catch (const InputError&) {
+      throw e;
+    }
+    const std::string hint = p.slipHint(raw);
+    if (hint.empty()) throw;
+    throw InputError(e.what() + hint);
+  }
+  if (d.has(k) && !p.plausibleByReader) checkPlausible(d, path, v);
+  return v;
+}
+
+void Schema::checkPlausible(const Dictionary& d, const std::string& path, double v) const {
+  const Param& p = param(path);
+  if (!p.plausibleRange || p.plausibleRange->contains(v)) return;
+  const std::string u = p.unit.empty() ? "" : " " + p.unit;
+  d.fail(p.key(), "value " + docNumber(v) + u + " is outside the plausible range " +
+                      plainRange(*p.plausibleRange) + u + " of " + p.plausibleFor + p.slipHint(v) +
+                      "; write it in " + (p.unit.empty() ? "SI units" : p.unit) +
+                      " (docs/parameters.md, \"Plausible ranges\")");
 }
 
 long Schema::integer(const Dictionary& d, const std::string& path) const {
@@ -265,6 +316,18 @@ std::string Schema::markdown(const std::vector<std::string>& sections) const {
     if (std::find(sections.begin(), sections.end(), p.section()) == sections.end()) continue;
     s += "| `" + p.path + "` | " + docDefault(p) + " | " + docAllowed(p) + " | " + p.unit + " | " +
          p.meaning + " |\n";
+  }
+  return s;
+}
+
+std::string Schema::plausibleRows() const {
+  std::string s;
+  for (const auto& p : params_) {
+    if (!p.plausibleRange) continue;
+    std::string slips;
+    for (const auto& u : p.slips) slips += (slips.empty() ? "" : ", ") + u.unit;
+    s += "| " + file_ + " | `" + p.path + "` | " + plainRange(*p.plausibleRange) + " | " + p.unit +
+         " | " + p.plausibleFor + " | " + slips + " |\n";
   }
   return s;
 }

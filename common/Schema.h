@@ -12,6 +12,13 @@
 
 namespace mixflow {
 
+// A unit a value is likely typed in by mistake: the value in SI is value x factor (g/cm³ for
+// kg/m³: 1000; GPa for Pa: 1e9; mm for m: 1e-3).
+struct UnitSlip {
+  std::string unit;
+  double factor = 1;
+};
+
 struct Param {
   enum class Type { Scalar, Integer, Word, Switch, Text, Dict, Any };
   std::string path;  // dotted path inside the file: "sample.length", "liquid.air.density"
@@ -29,12 +36,25 @@ struct Param {
   std::vector<std::string> onlyFor;
   std::string allowedNote;  // a cross-entry rule shown after the range, e.g. "≥ d"
   std::string defaultNote;  // shown in place of the default, e.g. "(required, Newtonian only)"
+  // Plausibility (Scalar): the physical range of the material or object named (plausibleFor),
+  // inside the allowed range; a value outside it is refused as a unit slip, suggesting the units
+  // of `slips` that would put it inside. plausibleByReader: the reader checks it itself
+  // (checkPlausible), e.g. where another entry decides what the material is.
+  std::optional<Range> plausibleRange;
+  std::string plausibleFor;
+  std::vector<UnitSlip> slips;
+  bool plausibleByReader = false;
 
   std::string key() const;      // last component of path
   std::string section() const;  // path without its last component ("" at top level)
   Param& only(std::vector<std::string> selectors);
   Param& alsoAllowed(std::string note);
   Param& shownDefault(std::string note);
+  Param& plausible(Range range, std::string what, std::vector<UnitSlip> units,
+                   bool byReader = false);
+  // "; in g/cm³ that would be 2500 kg/m3" for the slips that put v inside the plausible range
+  // (empty if none does).
+  std::string slipHint(double v) const;
 };
 
 Param scalarParam(std::string path, double def, Range range, std::string unit, std::string meaning);
@@ -78,6 +98,13 @@ class Schema {
   // Markdown table (entry, default, allowed, unit, meaning) of the entries in `sections`, in
   // declaration order; sub-dictionaries themselves are not rows.
   std::string markdown(const std::vector<std::string>& sections) const;
+  // Rows (file, entry, plausible range, unit, of what, unit slips suggested) of the entries with
+  // a plausible range, for the table docs/parameters.md shows (mixflowSchema).
+  std::string plausibleRows() const;
+
+  // Refuses v (entry `path`, in d) outside its plausible range, naming file, entry, value, the
+  // range and what it is the range of, and the unit slips that would explain it.
+  void checkPlausible(const Dictionary& d, const std::string& path, double v) const;
 
  private:
   const Param& typed(const std::string& path, Param::Type type) const;

@@ -29,7 +29,9 @@ Schema makeSchema() {
               .shownDefault("sceneProperties `sample.solidFraction`"),
           scalarParam("density", 0, Range::closed(10.0, 25000.0), "kg/m³",
                       "ρ*, the mixture's constant density")
-              .shownDefault("α_s ρ_s + α_f ρ_f"),
+              .shownDefault("α_s ρ_s + α_f ρ_f")
+              .plausible(Range::closed(10.0, 25000.0), "a mixture of grains and a fluid",
+                         {{"g/cm³", 1e3}}),
           dictParam("drifts", "the drift coefficients (kinematic pressures)"),
           scalarParam("drifts.lambdaU", b.lambdaU, Range::closed(-1e3, 1e3), "", "u_f = λ_u u_s")
               .alsoAllowed(drift),

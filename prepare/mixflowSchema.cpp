@@ -1,6 +1,7 @@
 // mixflowSchema: prints the Markdown tables of the declared dictionaries, and keeps the
 // generated tables of a document (docs/parameters.md) equal to them.
-//   mixflowSchema NAME          the table NAME (sceneProperties, sceneProperties.liquid, ...)
+//   mixflowSchema NAME          the table NAME (sceneProperties, sceneProperties.liquid, ...,
+//                               plausible: the plausible ranges of every declared dictionary)
 //   mixflowSchema -check DOC    exit 1 when a block <!-- BEGIN generated: NAME --> ...
 //                               <!-- END generated --> of DOC differs from the declarations
 //   mixflowSchema -update DOC   rewrites those blocks (the text around them is kept)
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "BulkModel.h"
@@ -45,6 +47,27 @@ std::vector<Table> tables() {
   };
 }
 
+// The table "plausible": every declared entry with a plausible range (Param::plausible), of
+// every dictionary above.
+const std::string kPlausible = "plausible";
+std::string plausibleTable() {
+  std::string s =
+      "| file | entry | plausible | unit | of | unit slips suggested |\n"
+      "|---|---|---|---|---|---|\n";
+  std::set<const Schema*> done;
+  for (const auto& t : tables())
+    if (done.insert(&t.schema).second) s += t.schema.plausibleRows();
+  return s;
+}
+
+// The tables by name: the declared dictionaries' and "plausible".
+std::vector<std::pair<std::string, std::string>> namedTables() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& t : tables()) out.emplace_back(t.name, t.schema.markdown(t.sections));
+  out.emplace_back(kPlausible, plausibleTable());
+  return out;
+}
+
 const std::string kEnd = "<!-- END generated -->";
 std::string beginMarker(const std::string& name) {
   return "<!-- BEGIN generated: " + name + " -->";
@@ -55,17 +78,16 @@ std::string beginMarker(const std::string& name) {
 std::string regenerate(const std::string& doc, std::vector<std::string>& stale,
                        std::vector<std::string>& missing) {
   std::string out = doc;
-  for (const auto& t : tables()) {
-    const std::string begin = beginMarker(t.name) + "\n";
+  for (const auto& [name, table] : namedTables()) {
+    const std::string begin = beginMarker(name) + "\n";
     const size_t b = out.find(begin);
     const size_t e = b == std::string::npos ? b : out.find(kEnd, b);
     if (b == std::string::npos || e == std::string::npos) {
-      missing.push_back(t.name);
+      missing.push_back(name);
       continue;
     }
     const size_t from = b + begin.size();
-    const std::string table = t.schema.markdown(t.sections);
-    if (out.compare(from, e - from, table) != 0) stale.push_back(t.name);
+    if (out.compare(from, e - from, table) != 0) stale.push_back(name);
     out.replace(from, e - from, table);
   }
   return out;
@@ -92,7 +114,7 @@ std::vector<std::string> unlisted() {
 
 int usage() {
   std::cerr << "usage: mixflowSchema NAME | -check DOC | -update DOC\n  NAME:";
-  for (const auto& t : tables()) std::cerr << " " << t.name;
+  for (const auto& [name, table] : namedTables()) std::cerr << " " << name;
   std::cerr << "\n";
   return 2;
 }
@@ -102,9 +124,9 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (args.size() == 1) {
-      for (const auto& t : tables())
-        if (t.name == args[0]) {
-          std::cout << t.schema.markdown(t.sections);
+      for (const auto& [name, table] : namedTables())
+        if (name == args[0]) {
+          std::cout << table;
           return 0;
         }
       return usage();
