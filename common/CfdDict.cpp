@@ -87,6 +87,12 @@ Schema makeSchema() {
           wordParam("mixtureModel", m.mixtureModel, {"cfdDem", "bulk"},
                     "a mixture's model: cfdDem (grains by LIGGGHTS, mixflowCoupled) or bulk (the "
                     "quasi two-phase bulk model, mixflowBulkFoam; constant/bulkProperties, below)"),
+          textParam("coarseCellsReason", m.coarseCellsReason,
+                    "a mixture whose cells are below 3 particle diameters on purpose (e.g. a "
+                    "quick case's coarse mesh) says why here, in quotes; the check's warning "
+                    "about those cells is then one note that gives this reason. Cells below 1 d "
+                    "are refused all the same")
+              .shownDefault("(none: warned)"),
           dictParam("observables", "what the liquidObservables function object measures"),
           scalarParam("observables.frontThreshold", o.frontThreshold, {0.0, 1.0, true, true}, "",
                       "α ≥ this counts as liquid (docs/model.md §8)"),
@@ -140,6 +146,7 @@ CfdDict CfdDict::read(const Dictionary& d) {
   m.alphaTolerance = sc.scalar(d, "alphaTolerance");
   m.writeFormat = sc.word(d, "writeFormat");
   m.mixtureModel = sc.word(d, "mixtureModel");
+  m.coarseCellsReason = sc.text(d, "coarseCellsReason");
 
   const Dictionary ob = d.subDictOrEmpty("observables");
   sc.allowOnly(ob, "observables");

@@ -30,6 +30,9 @@ struct CfdNumerics {
   // A mixture's model: cfdDem (grains by LIGGGHTS, mixflowCoupled) or bulk (the quasi two-phase
   // bulk model, mixflowBulkFoam; constant/bulkProperties).
   std::string mixtureModel = "cfdDem";
+  // Why a mixture's cells are below the advised 3 particle diameters on purpose (empty: not on
+  // purpose); the check then gives a note with this reason instead of a warning.
+  std::string coarseCellsReason;
 };
 
 struct ObservableSpec {

@@ -40,7 +40,11 @@ void checkCellsAgainstGrains(const LiquidCase& c, MixtureSetup& m) {
                              num(kCellDiametersMin) + " d (" + num(kCellDiametersWarn) +
                              " d advised); allowed range [" + num(kCellDiametersMin * d) + ", " +
                              num(c.sample.height / 4.0) + "] m");
-  if (ratio < kCellDiametersWarn * (1 - 1e-9))
+  if (ratio < kCellDiametersWarn * (1 - 1e-9) && !c.numerics.coarseCellsReason.empty())
+    m.notes.push_back(cfd.where("cellSize") + ": " + cells + asked + ", below the " +
+                      num(kCellDiametersWarn) + " d advised for unresolved coupling, because (" +
+                      cfd.where("coarseCellsReason") + "): " + c.numerics.coarseCellsReason);
+  else if (ratio < kCellDiametersWarn * (1 - 1e-9))
     m.warnings.push_back(cfd.where("cellSize") + ": " + cells + asked +
                          ": unresolved coupling is meant for cells of at least " +
                          num(kCellDiametersWarn) +
@@ -295,6 +299,7 @@ void describeMixture(const MixtureSetup& m, const LiquidCase& c, std::ostream& o
     os << "[mixflowPrepare] checked without the settled sample; left to mixflowPrepare after "
           "mixflowDem -settleOnly: the settled height inside the channel, the sample's DEM inputs "
           "against the case's, and the Courant estimate at the settled height\n";
+  for (const auto& n : m.notes) os << "[mixflowPrepare] note: " << n << "\n";
   for (const auto& w : m.warnings) os << "[mixflowPrepare] warning: " << w << "\n";
 }
 

@@ -50,8 +50,9 @@ struct MixtureSetup {
   double courant = 0;        // CFD step x frontSpeed / min(dx, dy)
   double relaxation = 0;     // beta T / m of a lone grain at its terminal velocity
   std::vector<std::string> warnings;
-  std::string demScriptPath;  // where the DEM script is written
-  std::string demScript;      // its text (prepareMixture only)
+  std::vector<std::string> notes;  // departures the case states a reason for (coarseCellsReason)
+  std::string demScriptPath;       // where the DEM script is written
+  std::string demScript;           // its text (prepareMixture only)
 };
 
 // Everything of a mixture scene that does not need the settled sample, at the fill height

@@ -15,7 +15,13 @@ For copies of the committed cases (W+P-quick: mixture, P-quick: dry, W: liquid),
     a coupled step whose Courant number estimate dt 2 sqrt(g H) / dx exceeds 1; writeInterval >
     endTime (mixture, dry and liquid); particles.density 1e300 (mixture and dry); a sample
     narrower than a grain reported against sample.width;
-  - the warnings exit 0 and give the reason: cells of 2.1 d (below 3 d), a Courant number estimate
+  - unit slips (outside an entry's plausible range, docs/parameters.md) are refused naming the
+    plausible range and the unit that explains the value: E = 70 (GPa typed as Pa) in a dry case and
+    a mixture, a wall modulus of 0.7, liquid density 1.26 (g/cm³), a kinematic viscosity typed for
+    the dynamic one, grain density 2.5, a diameter of 24 (mm), a sample length of 450 (mm); the air
+    pore fluid of P-bulk (density 1.2) passes;
+  - the warnings exit 0 and give the reason: cells of 2.1 d (below 3 d; a note giving the case's
+    reason instead when cfdDict coarseCellsReason states one), a Courant number estimate
     of 0.67 (above maxCo 0.5).
 Nothing is simulated: well under a minute in all.
 
@@ -61,7 +67,7 @@ with open(os.path.join(case, "dem", "settled.state"), "w") as f:
 before = tree(case)
 rc, msg, _ = run(prepare_exe, case)
 check(rc == 0 and tree(case) == before, f"a stale dem/settled.state does not affect -check (exit {rc})")
-for name, kind in (("P-quick", "dry"), ("W", "liquid")):
+for name, kind in (("P-quick", "dry"), ("W", "liquid"), ("P-bulk", "bulk model, air as the pore fluid")):
     case = copy(name, f"valid-{kind}")
     before = tree(case)
     rc, msg, _ = run(prepare_exe, case)
@@ -94,8 +100,40 @@ CASES = [
      [CP, "DiFeliceDragCoeffs.slipCoeffs", "dragViscosity slip"]),
     ("cells smaller than a grain", "W+P-quick", prepare_exe, CFD, r"^cellSize +0\.06;", "cellSize 0.02;", 2,
      [CFD, "cellSize", "0.02 m", "0.833 particle diameters", "at least 1 d", "allowed range [0.024, 0.075]"]),
-    ("cells of 2.1 d", "W+P-quick", prepare_exe, CFD, r"^cellSize +0\.06;", "cellSize 0.05;", 0,
+    # Unit slips (docs/parameters.md, "Plausible ranges"): refused before the run, naming the
+    # plausible range and the unit that explains the value. E = 70 typed for 70 GPa, in a dry case
+    # (mixflowDem, and mixflowPrepare -check of it) and in a mixture.
+    ("E in GPa, dry", "P-quick", dem_exe, SP, r"youngModulus +70e9;", "youngModulus 70;", 2,
+     [SP, "particles.youngModulus", "value 70 Pa", "plausible range [1e5, 1.2e12] Pa",
+      "typed in GPa, it is 7e10 Pa"]),
+    ("E in GPa, dry, mixflowPrepare", "P-quick", prepare_exe, SP, r"youngModulus +70e9;", "youngModulus 70;", 2,
+     [SP, "particles.youngModulus", "value 70 Pa", "typed in GPa, it is 7e10 Pa"]),
+    ("E in GPa, mixture", "W+P-quick", prepare_exe, SP, r"youngModulus +70e9;", "youngModulus 70;", 2,
+     [SP, "particles.youngModulus", "value 70 Pa", "typed in GPa, it is 7e10 Pa"]),
+    ("wall E in MPa", "P-quick", dem_exe, SP, r"wallYoungModulus +700e9;", "wallYoungModulus 0.7;", 2,
+     [SP, "particles.wallYoungModulus", "value 0.7 Pa", "plausible range"]),
+    ("liquid density in g/cm3", "W+P-quick", prepare_exe, SP, r"density +1000;", "density 1.26;", 2,
+     [SP, "liquid.density", "1.26 kg/m3", "gas's density", "viscosity 0.001 Pa s is a liquid's",
+      "typed in g/cm³, it is 1260 kg/m3", "[50, 25000]"]),
+    ("liquid density in g/cm3, liquid case", "W", prepare_exe, SP, r"density +1000;", "density 1.26;", 2,
+     [SP, "liquid.density", "typed in g/cm³, it is 1260 kg/m3"]),
+    ("kinematic viscosity for the dynamic one", "W", prepare_exe, SP, r"viscosity +0\.001;", "viscosity 1e-6;", 2,
+     [SP, "liquid.viscosity", "plausible range [1e-05, 1e8] Pa s", "kinematic viscosity", "0.001 Pa s"]),
+    ("grain density in g/cm3", "W+P-quick", prepare_exe, SP, r"density +2500;", "density 2.5;", 2,
+     [SP, "particles.density", "2.5", "[10, 25000]", "typed in g/cm³, it is 2500 kg/m3"]),
+    ("diameter in mm", "P-quick", dem_exe, SP, r"diameter +0\.024;", "diameter 24;", 2,
+     [SP, "particles.diameter", "value 24 m", "plausible range [1e-5, 0.5] m", "typed in mm, it is 0.024 m"]),
+    ("sample length in mm", "P-quick", dem_exe, SP, r"length +0\.45;", "length 450;", 2,
+     [SP, "sample.length", "value 450 m", "typed in mm, it is 0.45 m"]),
+    # W+P-quick says why its cells are 2.5 d (coarseCellsReason): a note then; without the reason
+    # the same cells are warned.
+    ("cells of 2.1 d", "W+P-quick", prepare_exe, CFD, r"^cellSize +0\.06;.*\n^coarseCellsReason .*$",
+     "cellSize 0.05;", 0,
      [CFD, "warning", "cellSize", "2.08 particle diameters", "at least 3 d", "cellSize >= 0.072 m"]),
+    ("cells of 2.1 d with the case's reason", "W+P-quick", prepare_exe, CFD, r"^cellSize +0\.06;",
+     "cellSize 0.05;", 0,
+     [CFD, "note: ", "cellSize", "2.08 particle diameters", "below the 3 d advised", "coarseCellsReason",
+      "the quick case keeps 5 cells"]),
     ("Courant estimate above 1", "W+P-quick", prepare_exe, CP, r"^exchangeEvery +25;", "exchangeEvery 1500;", 2,
      [CP, "exchangeEvery", "value 1500", "Courant number estimate", "3.37", "2 sqrt(g H) = 3.43 m/s",
       "H = 0.3 m", "exceeds 1", "allowed range [1, 445]"]),
