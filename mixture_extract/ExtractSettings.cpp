@@ -1,11 +1,13 @@
 #include "ExtractSettings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <utility>
 
+#include "CfdDict.h"
 #include "Dictionary.h"
 #include "Scene.h"
 #include "Schema.h"
@@ -41,6 +43,32 @@ void readAxis(const Dictionary& g, const std::string& key, double lo, double hi,
   if (v[2] != std::floor(v[2]) || v[2] < 1 || v[2] > 100000)
     g.fail(key, "bin count " + num(v[2]) + " must be a whole number in [1, 100000]");
   n = static_cast<int>(v[2]);
+}
+
+// Bins no finer than `smallest` (m: a grain, or a fluid cell), said as `why`: a finer bin
+// averages parts of single grains or of single cells (and makes a large file of noise).
+void checkBinSize(const Dictionary& g, const std::string& key, double a, double b, int n,
+                  double smallest, const std::string& why) {
+  const double bin = (b - a) / n;
+  if (bin >= smallest * (1 - 1e-9)) return;
+  const long most = std::max(1L, static_cast<long>(std::floor((b - a) / smallest * (1 + 1e-9))));
+  g.fail(key,
+         "bins of " + num(bin) + " m (" + num(b - a) + " m in " + std::to_string(n) +
+             " bins) are finer than " + why + " (" + num(smallest) +
+             " m): a bin would average parts of single grains or cells; allowed bin count [1, " +
+             std::to_string(most) + "] (bins of at least " + num(smallest) + " m)");
+}
+
+// The fluid cell edges along x and y as mixflowPrepare cuts the channel (system/cfdDict cellSize,
+// auto H / 20); none when the case has no cfdDict.
+bool fluidCellSize(const dem::Scene& scene, double& dx, double& dy) {
+  const std::string path = scene.caseDir + "/system/cfdDict";
+  if (!std::ifstream(path)) return false;
+  const CfdDict cfd = CfdDict::read(Dictionary::readFile(path));
+  const double h = cfd.numerics.cellSize > 0 ? cfd.numerics.cellSize : scene.sample.height / 20.0;
+  dx = scene.channel.length / std::max(1L, std::lround(scene.channel.length / h));
+  dy = scene.channel.height / std::max(1L, std::lround(scene.channel.height / h));
+  return true;
 }
 
 // Vector entries (read by readAxis, the window list and the regions): text declarations whose
@@ -281,6 +309,19 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   fn.pressure = sc.word(f, "fluid.pressure");
   fn.centres = sc.word(f, "fluid.centres");
   fn.volumes = sc.word(f, "fluid.volumes");
+
+  // Bins against the grains and, when the fluid is read, the fluid cells.
+  const double dGrain = scene.particles.diameter;
+  const std::string grain =
+      "a grain (particles.diameter in " + scene.caseDir + "/constant/sceneProperties)";
+  checkBinSize(g, "x", s.x0, s.x1, s.nx, dGrain, grain);
+  checkBinSize(g, "y", s.y0, s.y1, s.ny, dGrain, grain);
+  double cellX = 0, cellY = 0;
+  if (s.fluidSource != "none" && fluidCellSize(scene, cellX, cellY)) {
+    const std::string cell = "a fluid cell (cellSize in " + scene.caseDir + "/system/cfdDict)";
+    checkBinSize(g, "x", s.x0, s.x1, s.nx, cellX, cell);
+    checkBinSize(g, "y", s.y0, s.y1, s.ny, cellY, cell);
+  }
 
   const Dictionary p = d.subDictOrEmpty("particles");
   sc.allowOnly(p, "particles");

@@ -142,6 +142,16 @@ ExtractReport Extractor::run() {
   std::vector<double> fluidTimes, initialFluid;
   if (fluid)
     for (double t : fluid->times()) (t <= tol ? initialFluid : fluidTimes).push_back(t);
+  // A finished run with the initial fluid state alone wrote no fluid fields: nothing to pair.
+  if (fluid && fluidTimes.empty() && finished)
+    throw InputError(
+        opt_.caseDir + ": the fluid fields are missing: the run finished (" +
+        (fs::path(opt_.caseDir) / "postProcessing/dem/summary.json").string() +
+        ") but its only fluid write is the initial state at t = 0 (" + fluid->describe() +
+        "); a parallel run's fields are in processor*/ until reconstructPar joins them. Run the "
+        "fluid solver (or reconstructPar -case " +
+        opt_.caseDir + "), or extract the particles alone with fluid { source none; } in " +
+        dictFile);
   // Each solved fluid time pairs with its nearest snapshot when at most pairTolerance away; a
   // snapshot keeps the nearest of the fluid times that chose it.
   const size_t ns = series.size();

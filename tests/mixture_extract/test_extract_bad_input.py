@@ -2,7 +2,9 @@
 """Bad input stops mixflowExtract with exit status 2 and a message naming the file,
 the entry and the allowed range (or the available data), before anything is written (the output
 directory is compared before and after each case). Each case breaks one thing in a copy of a
-valid synthetic case (particles only, snapshots every 0.01 s up to 0.09 s, finished).
+valid synthetic case (particles only, snapshots every 0.01 s up to 0.09 s, finished): among
+them bins finer than a grain or a fluid cell (allowed bin counts named), and a finished run
+whose fluid wrote only its initial state (refused as missing fluid fields).
 
 usage: test_extract_bad_input.py MIXFLOWEXTRACT WORKDIR"""
 import hashlib
@@ -59,6 +61,20 @@ def drop_array(case):
            np.zeros((n, 6)), drop=("c_pstress[4-6]",))
 
 
+def initial_fluid_only(case):
+    """The fluid's initial write (0/) alone, as a run that wrote no fluid fields leaves it."""
+    c = np.array([[0.05, 0.05, 0.03], [0.15, 0.05, 0.03]])
+    sc.foam_time(case, "0", c, [1e-3, 1e-3], np.zeros((2, 3)), [0, 0], [1, 1], [1, 1])
+    edit_dict(r"windows", "liquidDensity 1000;\nwindows")(case)
+
+
+def with_cfd_dict(case):
+    """A fluid mesh of 0.1 m cells (system/cfdDict): bins of 0.05 m would split its cells."""
+    sc.write(os.path.join(case, "system/cfdDict"), "cellSize 0.1;\n")
+    initial_fluid_only(case)
+    sc.foam_time(case, "0.05", np.array([[0.05, 0.05, 0.03]]), [1e-3], np.zeros((1, 3)), [0], [1], [1])
+
+
 def run_then_regrid(case):
     r = subprocess.run([exe, "-case", case], capture_output=True, text=True)
     assert r.returncode == 0, r.stdout + r.stderr
@@ -74,6 +90,20 @@ CASES = [
      ["system/extractDict", "grid.y", "outside the domain [-0.006, 0.406]"]),
     ("fractional bin count", edit_dict(r"x \(0 0.3 6\)", "x (0 0.3 2.5)"), [],
      ["grid.x", "2.5", "whole number in [1, 100000]"]),
+    # 1 mm bins: finer than a grain (d 0.012 m); 25 bins of 0.012 m fit into 0.3 m.
+    ("bins finer than a grain", edit_dict(r"x \(0 0.3 6\)", "x (0 0.3 300)"), [],
+     ["system/extractDict", "grid.x", "bins of 0.001 m", "finer than a grain", "particles.diameter",
+      "0.012", "allowed bin count [1, 25]"]),
+    ("bins finer than a grain in y", edit_dict(r"y \(0 0.12 3\)", "y (0 0.12 20)"), [],
+     ["system/extractDict", "grid.y", "bins of 0.006 m", "allowed bin count [1, 10]"]),
+    # 0.1 m fluid cells (8 over the 0.8 m channel, 4 over its 0.4 m height): bins of 0.05 m in x
+    # split them; at most 3 bins of 0.1 m over the 0.3 m grid.
+    ("bins finer than a fluid cell", with_cfd_dict, [],
+     ["system/extractDict", "grid.x", "bins of 0.05 m", "finer than a fluid cell", "cellSize",
+      "allowed bin count [1, 3]"]),
+    ("finished run without fluid fields", initial_fluid_only, [],
+     ["the fluid fields are missing", "only fluid write is the initial state at t = 0",
+      "reconstructPar", "fluid { source none; }"]),
     ("empty window", edit_dict(r"\(0.05 0.1\)", "(0.052 0.058)"), [],
      ["system/extractDict", "windows.list", "2nd pair", "[0.052, 0.058)", "holds no particle snapshot",
       "t = 0.05 and 0.06", "[0, 0.09]"]),
