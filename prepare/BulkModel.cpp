@@ -126,7 +126,7 @@ namespace fs = std::filesystem;
 // range-checked cell by cell by mixflowBulkFoam, which has the mesh; here a missing file is
 // refused at ENTRY of the drifts block, with MISSING saying what writes it.
 void addFieldDrifts(const fs::path& dir, const Dictionary& dr, const std::string& entry,
-                    const std::string& missing, long& cells,
+                    const std::string& missing, long& cells, std::string& firstFile,
                     std::set<std::array<double, 3>>& distinct) {
   std::vector<std::vector<double>> values;
   for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
@@ -138,6 +138,7 @@ void addFieldDrifts(const fs::path& dir, const Dictionary& dr, const std::string
     if (n >= 0 && cells >= 0 && n != cells)
       throw InputError(field.string() + ": internalField has " + std::to_string(n) +
                        " cells, the other drift fields " + std::to_string(cells));
+    if (n >= 0 && cells < 0) firstFile = field.string();
     if (n >= 0) cells = n;
   }
   const auto at = [](const std::vector<double>& v, long i) { return v.size() == 1 ? v[0] : v[i]; };
@@ -255,16 +256,17 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
         addFieldDrifts(constant / "drifts" / name, dr, "timeVarying",
                        "scripts/calibrate_drifts.py --fields --per-window writes lambdaU, "
                        "lambdaW and lambdaP in every window",
-                       cells, distinct);
+                       cells, b.driftFieldFile, distinct);
         b.driftWindowTimes.push_back(t);
       }
     } else {
       addFieldDrifts(constant, dr, "fields",
                      "a volScalarField; scripts/calibrate_drifts.py --fields writes lambdaU, "
                      "lambdaW and lambdaP",
-                     cells, distinct);
+                     cells, b.driftFieldFile, distinct);
     }
     b.fieldDrifts.assign(distinct.begin(), distinct.end());
+    b.driftFieldCells = cells;
   }
 
   const Dictionary s = d.subDictOrEmpty("solid");

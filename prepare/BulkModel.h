@@ -25,6 +25,10 @@ struct BulkModel {
   // (lambdaU, lambdaW, lambdaP) cell triples, so that the time-step bound sees every cell.
   bool driftFields = false;
   std::vector<std::array<double, 3>> fieldDrifts;
+  // Cells of the drift fields' nonuniform internalFields (-1: all uniform), and the first file
+  // read, for the check against the mesh mixflowPrepare makes (LiquidCase::read).
+  long driftFieldCells = -1;
+  std::string driftFieldFile;
   // drifts.timeVarying on (with fields): the fields change in time, one set per extraction window
   // in constant/drifts/<t>/ (t the window's centre in s, ascending in driftWindowTimes), taken at
   // the solver's time as driftInterpolation says; fieldDrifts then holds every window's cells.

@@ -115,6 +115,17 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
                              " m; at least 4 are needed, allowed range (0, " +
                              shortNum(c.sample.height / 4.0) + "]");
   const double cells = double(c.nx) * c.ny * c.nz;
+  // The bulk model's drift fields hold one value per cell of the mesh made here.
+  if (c.bulkModel() && c.bulk.driftFields && c.bulk.driftFieldCells >= 0 &&
+      c.bulk.driftFieldCells != static_cast<long>(cells))
+    throw InputError(c.bulk.driftFieldFile + ": internalField has " +
+                     std::to_string(c.bulk.driftFieldCells) + " cells, but the mesh of " +
+                     (fs::path(caseDir) / "system/cfdDict").string() + " (cellSize " + shortNum(h) +
+                     " m) has " + shortNum(cells) + " = " + std::to_string(c.nx) + " x " +
+                     std::to_string(c.ny) + " x " + std::to_string(c.nz) +
+                     "; allowed: " + shortNum(cells) +
+                     " values, or uniform (calibrate_drifts.py --fields writes them on the "
+                     "case's mesh: run mixflowPrepare and blockMesh first)");
   if (cells > 5e7)
     cfd.fail("cellSize", "value " + shortNum(h) + " m gives " + shortNum(cells) +
                              " cells (limit 5e7); use a larger cell size or dimensions 2");
