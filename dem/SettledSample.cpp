@@ -1,9 +1,9 @@
 #include "SettledSample.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -119,13 +119,11 @@ Dictionary sectionOf(const Dictionary& root, const std::string& section) {
   return d;
 }
 
-// v with the fewest significant digits that read back as v (0.45, not 0.45000000000000001).
+// v with the fewest digits that read back as v (0.45, not 0.45000000000000001; 2600).
 std::string exactNumber(double v) {
-  for (int digits = 1; digits < 17; ++digits) {
-    const std::string s = formatNumber(v, digits);
-    if (std::strtod(s.c_str(), nullptr) == v) return s;
-  }
-  return formatNumber(v, 17);
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 // Each declared entry of the given sections as "file path value", read as the programs read it.
