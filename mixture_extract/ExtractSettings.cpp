@@ -92,9 +92,12 @@ Schema makeSchema() {
           dictParam("grid", "the averaging grid in (x, y), averaged across the width (required)"),
           // The domain is widened by one particle radius r: grains overlap the floor and walls by
           // their contact deflection, and a grid that starts at -r holds all of their volume.
-          vectorParam("grid.x", "m", "x0 < x1 in [−r, channel.length + r]; nx whole in [1, 100000]",
+          vectorParam("grid.x", "m",
+                      "x0 < x1 in [−r, channel.length + r]; nx whole in [1, 100000]; bins ≥ d "
+                      "(and, when the fluid is read, ≥ the fluid cell of cfdDict cellSize)",
                       "`x0 x1 nx`: nx bins from x0 to x1 (r the particle radius)", true),
-          vectorParam("grid.y", "m", "y0 < y1 in [−r, channel.height + r]; ny whole in [1, 100000]",
+          vectorParam("grid.y", "m",
+                      "y0 < y1 in [−r, channel.height + r]; ny whole in [1, 100000]; bins as x",
                       "`y0 y1 ny`: ny bins from y0 to y1", true),
           dictParam("windows", "the time windows: a list, or start/end/width (required)"),
           vectorParam("windows.list", "s", "pairs t0 < t1, t ≥ 0; not with start/end/width",
