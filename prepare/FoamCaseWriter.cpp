@@ -143,12 +143,6 @@ std::string blockMeshDict(const LiquidCase& c) {
   return s.str();
 }
 
-// Significant digits of the fields OpenFOAM writes: 10, or 17 (every double exactly) for the bulk
-// model's drift fields, which decomposePar rewrites with this precision for each rank: a value
-// clipped to the admissible bound (calibrate_drifts.py) rounded to 10 digits can fall outside it
-// (-1.5101419878296147 becomes -1.510141988) and be refused on the ranks.
-int writePrecision(const LiquidCase& c) { return c.bulkModel() && c.bulk.driftFields ? 17 : 10; }
-
 std::string controlDict(const LiquidCase& c) {
   const CfdNumerics& m = c.numerics;
   const bool coupled = c.coupledDeltaT > 0;
@@ -162,7 +156,7 @@ std::string controlDict(const LiquidCase& c) {
   else
     s << "deltaT          " << num(m.deltaT) << ";\nwriteControl    adjustable;\n";
   s << "purgeWrite      0;\n"
-    << "writeFormat     " << m.writeFormat << ";\nwritePrecision  " << writePrecision(c) << ";\n"
+    << "writeFormat     " << m.writeFormat << ";\nwritePrecision  10;\n"
     << "writeCompression off;\ntimeFormat      general;\ntimePrecision   8;\n"
     << "runTimeModifiable no;\nadjustTimeStep  " << (coupled ? "no" : "yes") << ";\n"
     << "maxCo           " << num(m.maxCo) << ";\n"
