@@ -29,6 +29,7 @@
 #include "EulerDdtScheme.H"
 #include "Function1.H"
 #include "fvCFD.H"
+#include "RunTime.H"
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
@@ -54,7 +55,7 @@ int runCoupled(int argc, char* argv[]) {
 
   // clang-format off
 #include "setRootCase.H"
-#include "createTime.H"
+#include "createRunTime.H"
 #include "createMesh.H"
 #include "createPimpleControl.H"
 #include "createTimeControls.H"

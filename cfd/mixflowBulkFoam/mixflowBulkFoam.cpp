@@ -19,6 +19,7 @@
 #include "Progress.h"
 #include "bulkMixtureViscosity.H"
 #include "fvCFD.H"
+#include "RunTime.H"
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"

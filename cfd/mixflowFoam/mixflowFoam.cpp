@@ -32,6 +32,7 @@
 #include "MixflowProperties.h"
 #include "Progress.h"
 #include "fvCFD.H"
+#include "RunTime.H"
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
