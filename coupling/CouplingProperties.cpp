@@ -48,6 +48,9 @@ Schema makeSchema() {
                 "velocity at every DEM step (stable for any β); held: the whole force held"),
       wordParam("dragFluidResponse", c.dragFluidResponse, {"none", "share", "continuity"},
                 "implicit only: the fluid velocity the drag sees within the interval (below)"),
+      wordParam("dragCoefficientUpdate", c.dragCoefficientUpdate, {"slip", "exchange"},
+                "implicit only: slip: β follows the grain's slip speed at every DEM step "
+                "(tabulated at the exchange); exchange: β of the exchange's slip held"),
       wordParam("pressureCoupling", c.pressureCoupling, {"fluid", "mixture"},
                 "mixture: the pressure equation counts the share of the grains' volume the "
                 "implicit drag carries (mixture continuity); fluid: the fluid's alone (below)")
@@ -98,6 +101,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.logEvery = sc.integer(d, "logEvery");
   p.dragIntegration = sc.word(d, "dragIntegration");
   p.dragFluidResponse = sc.word(d, "dragFluidResponse");
+  p.dragCoefficientUpdate = sc.word(d, "dragCoefficientUpdate");
   // Default: mixture wherever it applies (implicit drag without a dragFluidResponse mode).
   const bool mixtureApplies = p.dragIntegration == "implicit" && p.dragFluidResponse == "none";
   p.pressureCoupling = d.has("pressureCoupling") ? sc.word(d, "pressureCoupling")

@@ -43,6 +43,11 @@ struct CouplingProperties {
   // flux is held over the interval instead of U, so the pore fluid counterflows a compacting bed
   // within the interval as the fluid step's continuity will make it (DemLink.h).
   std::string dragFluidResponse = "none";
+  // implicit only. slip: the drag coefficient follows the grain's slip speed at every DEM step
+  // (the exchange tabulates the laws against the slip, SlipTable.h); exchange: beta of the
+  // exchange's slip is held over the interval, which freezes a plastic (yield-stress) drag at
+  // the slip the last interval ended with.
+  std::string dragCoefficientUpdate = "slip";
   // fluid: the fluid step's continuity sees the grains' displacement over the DEM interval just
   // run, and the next interval's drag uses the fluid as it was before that step.
   // mixture (implicit drag, dragFluidResponse none): the next interval's drag uses the fluid

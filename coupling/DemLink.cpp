@@ -24,7 +24,8 @@ const char* kStateId = "mixflowDragState";
 // the fluid share's own acceleration(3), counterflow factor c, the sum of the particle's
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
 // over the one before(3) (v_ref: what the fluid step behind U saw), and 1 once a pushImplicit set
-// it (0 in a restart without the state).
+// it (0 in a restart without the state), then the fluid sample of the drag laws (rho, mu, shear
+// rate, eps_f; eps_f 0: beta held).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -38,7 +39,8 @@ enum State {
   kMeanVelocityLast = 21,
   kMeanVelocityRef = 24,
   kPushed = 27,
-  kStateSize = 28
+  kSample = 28,
+  kStateSize = 32
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -98,14 +100,28 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
     const double dtm = dt / a->rmass[i];
     const double invMf = si[kInvFluidMass];
     const double c = si[kCounterflow];
-    const double betaEff = si[kBeta] / (1.0 + si[kBeta] * dt * ((1.0 + c) / a->rmass[i] + invMf));
+    // The fluid share's velocity before this step's drag (a repeated step's old drag undone).
+    double Uf[3];
+    for (int k = 0; k < 3; ++k) {
+      const double impulse = si[kImpulse + k] - (repeat ? dt * si[kLastDrag + k] : 0.0);
+      Uf[k] = si[kU + k] + tau * si[kAccel + k] - invMf * impulse + c * si[kMeanVelocityRef + k];
+    }
+    // dragCoefficientUpdate slip: the laws' beta at this step's slip, the velocity before the
+    // step's update (beta lags by one DEM step; backward Euler keeps it stable, and its fixed
+    // points are the law's).
+    double beta = si[kBeta];
+    if (law_ && si[kSample + 3] > 0) {
+      const DragFluidSample sample{si[kSample], si[kSample + 1], si[kSample + 2], si[kSample + 3]};
+      ParticleState p;
+      p.radius = a->radius[i];
+      p.mass = a->rmass[i];
+      p.v = (1.0 + c) * Vec3(a->v[i][0], a->v[i][1], a->v[i][2]);
+      beta = law_(p, sample.at(Vec3(Uf[0], Uf[1], Uf[2])));
+    }
+    const double betaEff = beta / (1.0 + beta * dt * ((1.0 + c) / a->rmass[i] + invMf));
     for (int k = 0; k < 3; ++k) {
       const double fexp = si[kFexp + k];
-      // The fluid share's velocity before this step's drag (a repeated step's old drag undone).
-      const double impulse = si[kImpulse + k] - (repeat ? dt * si[kLastDrag + k] : 0.0);
-      const double Uf =
-          si[kU + k] + tau * si[kAccel + k] - invMf * impulse + c * si[kMeanVelocityRef + k];
-      const double drag = betaEff * (Uf - (1.0 + c) * (a->v[i][k] + dtm * (a->f[i][k] + fexp)));
+      const double drag = betaEff * (Uf[k] - (1.0 + c) * (a->v[i][k] + dtm * (a->f[i][k] + fexp)));
       si[kImpulse + k] += repeat ? 0.5 * dt * (drag - si[kLastDrag + k]) : dt * drag;
       si[kLastDrag + k] = drag;
       if (!repeat && tau > 0) si[kVelocitySum + k] += a->v[i][k];  // not a run's setup
@@ -157,6 +173,10 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
       si[kImpulse + k] = 0.0;
       si[kAccel + k] = next[i].fluidAcceleration[k];
     }
+    si[kSample] = next[i].sample.rho;
+    si[kSample + 1] = next[i].sample.mu;
+    si[kSample + 2] = next[i].sample.shearRate;
+    si[kSample + 3] = next[i].sample.voidfraction;
     si[kPushed] = 1.0;
   }
 }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct AppliedDrag {
   Vec3 fluidAcceleration;
   // c = (1 - eps) / eps of the particle's cell (dragFluidResponse continuity); 0: U held.
   double counterflow = 0;
+  // The fluid values of the drag laws (dragCoefficientUpdate slip): beta is the laws' at the
+  // slip of every DEM step; voidfraction 0: beta held over the interval.
+  DragFluidSample sample;
 };
 
 class DemLink {
@@ -66,6 +70,11 @@ class DemLink {
   // local particle i (same order as the last pull) where has[i].
   void setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has);
 
+  // dragCoefficientUpdate slip: the drag coefficient of a particle at a fluid sample (the sum of
+  // the force models' beta), which the implicit drag evaluates at every DEM step.
+  using DragLaw = std::function<double(const ParticleState&, const FluidAtParticle&)>;
+  void setDragLaw(DragLaw law) { law_ = std::move(law); }
+
   DragIntegration mode() const { return mode_; }
   double timeStep() const;
   long step() const { return session_.step(); }
@@ -87,6 +96,7 @@ class DemLink {
   std::int64_t lastCallStep_ = -1;
   std::int64_t intervalStart_ = 0;  // DEM step of the last pushImplicit
   bool adopted_ = false;            // the restart's drag state is kept (adoptRestoredState)
+  DragLaw law_;                     // empty: beta held over the interval
 };
 
 }  // namespace mixflow::coupling

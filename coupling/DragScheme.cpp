@@ -151,13 +151,20 @@ DemLink::DragIntegration DragScheme::integrationOf(const CouplingProperties& pro
 }
 
 std::unique_ptr<DragScheme> DragScheme::New(const CouplingProperties& props, double interval) {
+  std::unique_ptr<DragScheme> scheme;
   if (integrationOf(props) == DemLink::DragIntegration::held)
-    return std::make_unique<HeldDrag>(interval, props.dragRelaxationLimit,
-                                      props.dragCounterflowLimit);
-  if (props.dragFluidResponse == "share") return std::make_unique<ShareDrag>(interval);
-  if (props.dragFluidResponse == "continuity") return std::make_unique<ContinuityDrag>(interval);
-  if (props.pressureCoupling == "mixture") return std::make_unique<MixtureDrag>(interval);
-  return std::make_unique<ImplicitDrag>(interval);
+    scheme =
+        std::make_unique<HeldDrag>(interval, props.dragRelaxationLimit, props.dragCounterflowLimit);
+  else if (props.dragFluidResponse == "share")
+    scheme = std::make_unique<ShareDrag>(interval);
+  else if (props.dragFluidResponse == "continuity")
+    scheme = std::make_unique<ContinuityDrag>(interval);
+  else if (props.pressureCoupling == "mixture")
+    scheme = std::make_unique<MixtureDrag>(interval);
+  else
+    scheme = std::make_unique<ImplicitDrag>(interval);
+  scheme->followsSlip_ = props.dragCoefficientUpdate == "slip";
+  return scheme;
 }
 
 // Implicit drag: the fluid's step sees the coefficient beta_T = beta / (1 + beta T / m) (backward
@@ -184,6 +191,7 @@ void DragScheme::centreForce(const std::vector<std::unique_ptr<ForceModel>>& mod
     d.force.beta += fms[m].beta;
     d.force.explicitForce += fms[m].explicitForce;
   }
+  if (followsSlip_ && kind_ != Kind::held) d.sample = DragFluidSample::of(f);
   const double s = scale(p, f, c, d.force, counts);
   for (size_t m = 0; m < models.size(); ++m) {
     fms[m].beta *= s;
@@ -204,9 +212,10 @@ void DragScheme::handToDem(DemLink& link, const std::vector<ParticleState>& own,
   for (size_t i = 0; i < own.size(); ++i) {
     const CentreForce& d = owned[i].drag;
     if (owned[i].host >= 0)
-      next[i] = AppliedDrag{
-          d.force.beta,        d.U,          d.force.explicitForce, Vec3(), d.invFluidMass,
-          d.fluidAcceleration, d.counterflow};
+      next[i] = AppliedDrag{d.force.beta,          d.U,
+                            d.force.explicitForce, Vec3(),
+                            d.invFluidMass,        d.fluidAcceleration,
+                            d.counterflow,         d.sample};
   }
   link.pushImplicit(next);
 }

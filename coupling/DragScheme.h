@@ -42,6 +42,8 @@ class DragScheme {
   bool usesFluidOwnAcceleration() const { return kind_ == Kind::implicitShare; }
   // implicit mixture: after the fluid step the drag's U is sampled again.
   bool resamplesFluid() const { return kind_ == Kind::implicitMixture; }
+  // implicit, dragCoefficientUpdate slip: the drag laws are evaluated at every DEM step.
+  bool followsSlip() const { return followsSlip_; }
 
   // Rank-local counts of one exchange, for the log.
   struct Counts {
@@ -79,6 +81,8 @@ class DragScheme {
 
   Kind kind_;
   double interval_;
+  // implicit, dragCoefficientUpdate slip: the fluid sample goes with beta to the DEM (DemLink).
+  bool followsSlip_ = false;
 };
 
 }  // namespace mixflow::coupling

@@ -149,6 +149,12 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   link_ = std::move(dem.link);
   exchangeInterval_ = dem.exchangeInterval;
   drag_ = DragScheme::New(*props_, exchangeInterval_);
+  if (drag_->followsSlip())
+    link_->setDragLaw([this](const ParticleState& p, const FluidAtParticle& f) {
+      double beta = 0;
+      for (const auto& m : forceModels_) beta += m->force(p, f).beta;
+      return beta;
+    });
 
   auto locator = std::make_unique<FoamCellLocator>(mesh_);
   double zLo = 0, zHi = 0;

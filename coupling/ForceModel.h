@@ -42,6 +42,25 @@ struct FluidAtParticle {
   Vec3 gradP;               // grad(p) [Pa/m] (no formulation-B model uses it)
 };
 
+// The scalars of an exchange's fluid sample that the drag laws read besides U: with
+// dragCoefficientUpdate slip the implicit drag evaluates the laws with them at every DEM step
+// (DemLink.h). voidfraction 0: no such sample (beta held over the interval).
+struct DragFluidSample {
+  double rho = 0, mu = 0, shearRate = 0, voidfraction = 0;
+  static DragFluidSample of(const FluidAtParticle& f) {
+    return {f.rho, f.mu, f.shearRate, f.voidfraction};
+  }
+  FluidAtParticle at(const Vec3& U) const {
+    FluidAtParticle f;
+    f.U = U;
+    f.rho = rho;
+    f.mu = mu;
+    f.shearRate = shearRate;
+    f.voidfraction = voidfraction;
+    return f;
+  }
+};
+
 // Which fluid quantities a model reads (the coupling samples only what the active models need).
 enum FluidNeeds : unsigned {
   kNeedsU = 1u << 0,

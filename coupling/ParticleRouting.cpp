@@ -47,6 +47,8 @@ void PartRecord::pack(std::vector<double>& b) const {
   b.push_back(drag.invFluidMass);
   put(b, drag.fluidAcceleration);
   b.push_back(drag.counterflow);
+  b.insert(b.end(),
+           {drag.sample.rho, drag.sample.mu, drag.sample.shearRate, drag.sample.voidfraction});
   for (size_t m = 0; m < nModels; ++m) put(b, modelForces[m]);
 }
 
@@ -62,6 +64,7 @@ PartRecord PartRecord::unpack(const double* r, size_t width) {
   m.drag.invFluidMass = r[11];
   m.drag.fluidAcceleration = vec(r + 12);
   m.drag.counterflow = r[15];
+  m.drag.sample = DragFluidSample{r[16], r[17], r[18], r[19]};
   for (size_t k = kHead; k + 3 <= width && m.nModels < kMaxForceModels; k += 3)
     m.modelForces[m.nModels++] = vec(r + k);
   return m;

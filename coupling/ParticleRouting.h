@@ -29,6 +29,7 @@ struct CentreForce {
   double invFluidMass = 0;  // 1 / m_f of the particle's fluid share (dragFluidResponse share)
   Vec3 fluidAcceleration;   // the share's acceleration by the fluid's own forces
   double counterflow = 0;   // c = (1 - eps) / eps (dragFluidResponse continuity)
+  DragFluidSample sample;   // dragCoefficientUpdate slip: the laws' fluid values
 };
 
 // What the fluid receives for one particle in this CFD step, written as beta (U - v) + F_explicit.
@@ -50,7 +51,8 @@ struct ParticleRecord {
 
 // R2: a rank's part of a particle, to its owner.
 struct PartRecord {
-  static constexpr size_t kHead = 16;  // owner index, work index, inside, centre, CentreForce(12)
+  // owner index, work index, inside, centre, CentreForce(12 + the fluid sample(4))
+  static constexpr size_t kHead = 20;
   static size_t width(size_t nModels) { return kHead + 3 * nModels; }
   long ownerIndex = 0;
   long workIndex = 0;   // the particle's index at the reporting rank (R3 addresses it)

@@ -235,6 +235,8 @@ def add_parallel_args(ap):
 def add_fluid_response_arg(ap):
     ap.add_argument("--drag-fluid-response", default="none", choices=("none", "share", "continuity"),
                     help="couplingProperties dragFluidResponse (implicit drag)")
+    ap.add_argument("--drag-coefficient-update", choices=("slip", "exchange"),
+                    help="couplingProperties dragCoefficientUpdate (default: the solver's)")
     ap.add_argument("--pressure-coupling", choices=("fluid", "mixture"),
                     help="couplingProperties pressureCoupling (default: the code's, mixture for "
                          "the implicit drag without dragFluidResponse, fluid otherwise)")
@@ -244,9 +246,11 @@ def add_fluid_response_arg(ap):
 
 
 def fluid_response_entry(a):
-    """The couplingProperties lines for --drag-fluid-response, --pressure-coupling and
-    --void-smoothing."""
+    """The couplingProperties lines for --drag-fluid-response, --drag-coefficient-update,
+    --pressure-coupling and --void-smoothing."""
     text = f"dragFluidResponse {a.drag_fluid_response};\n"
+    if a.drag_coefficient_update:
+        text += f"dragCoefficientUpdate {a.drag_coefficient_update};\n"
     if a.pressure_coupling:
         text += f"pressureCoupling {a.pressure_coupling};\n"
     if a.void_smoothing is not None:

@@ -217,7 +217,7 @@ def main():
     # mixflowExtract on the coupled case.
     with open(os.path.join(case, "system", "extractDict"), "w") as f:
         f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
-                "grid { x (-0.012 1.188 20); y (-0.012 0.348 6); }\n"
+                "grid { x (-0.012 1.188 19); y (-0.012 0.348 5); }\n"  # bins >= a cell (0.0606 m)
                 f"windows {{ start 0; end {a.end!r}; width 0.1; }}\n"
                 "fluid { source openfoam; }\n"
                 "liquidDensity 1000;\n")

@@ -654,6 +654,7 @@ TEST(ParticleRouting, RecordsRoundTrip) {
   r2.inside = 0.25;
   r2.centre = true;
   r2.drag = CentreForce{ParticleForce{0.5, Vec3(1, 2, 3)}, Vec3(4, 5, 6), 7, Vec3(8, 9, 10), 11};
+  r2.drag.sample = DragFluidSample{1000, 2.5, 0.125, 0.4};
   r2.nModels = 2;
   r2.modelForces[0] = Vec3(12, 13, 14);
   r2.modelForces[1] = Vec3(15, 16, 17);
@@ -668,6 +669,8 @@ TEST(ParticleRouting, RecordsRoundTrip) {
   EXPECT_EQ(u2.drag.invFluidMass, 7);
   EXPECT_EQ(u2.drag.fluidAcceleration.y, 9);
   EXPECT_EQ(u2.drag.counterflow, 11);
+  EXPECT_EQ(u2.drag.sample.rho, 1000);
+  EXPECT_EQ(u2.drag.sample.voidfraction, 0.4);
   ASSERT_EQ(u2.nModels, 2u);
   EXPECT_EQ(u2.modelForces[1].z, 17);
 
