@@ -25,8 +25,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import foamcase, outputs  # noqa: E402
+from mixflow.cli import command  # noqa: E402
 
 
 def settle_wall(log):
@@ -60,7 +60,7 @@ def end_state(case):
 
 
 def run(label, scene, tier, work, sets):
-    cmd = [sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", tier, "--scenes",
+    cmd = command("suite") + ["--tier", tier, "--scenes",
            scene, "--work", os.path.join(work, label)]
     for s in sets:
         cmd += ["--set", s]

@@ -35,8 +35,7 @@ import tempfile
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from dem_driver_vs_liggghts import timed as _timed  # noqa: E402
+from mixflow.timing import timed as _timed  # noqa: E402
 from mixflow import foamdict, outputs  # noqa: E402
 
 

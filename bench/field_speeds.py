@@ -13,7 +13,6 @@ import sys
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import foamcase as fc  # noqa: E402
 
 

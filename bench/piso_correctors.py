@@ -33,9 +33,7 @@ import time
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_liquid_cases, a test driver
-import run_liquid_cases as liquid_cases  # noqa: E402  (write_case: the liquid tests' case writer)
+from mixflow import liquidcase  # noqa: E402  (write_case: the liquid tests' case writer)
 from mixflow import outputs  # noqa: E402
 
 RHO, DX, DT = 1000.0, 0.005, 1e-3
@@ -48,7 +46,7 @@ def write_case(case, mu, ncorr, end):
              "channel { length 0.3; height 0.15; }\n"
              f"liquid {{ rheology Newtonian; density {RHO}; viscosity {mu}; surfaceTension 0; }}\n")
     cfd = f"dimensions 2;\ncellSize {DX};\ndeltaT {DT};\nmaxDeltaT {DT};\nnCorrectors {ncorr};\n"
-    liquid_cases.write_case(case, scene, cfd, end, end)
+    liquidcase.write_case(case, scene, cfd, end, end)
 
 
 def run(cmd, case, log, timeout=None):

@@ -34,10 +34,8 @@ import time
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from mixflow import foamcase, foamdict, outputs  # noqa: E402
-import suite  # noqa: E402
+from mixflow.commands import suite  # noqa: E402
 
 SCENE_NAMES = {"P-quick": "P", "W+P-quick": "W&P", "P": "P", "W+P": "W&P"}
 

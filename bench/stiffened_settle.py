@@ -24,9 +24,7 @@ import sys
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, HERE)
-from dem_driver_vs_liggghts import timed  # noqa: E402
+from mixflow.timing import timed  # noqa: E402
 from mixflow import contacts, foamdict  # noqa: E402
 
 COMPARED = ("height_m", "sample_solid_fraction", "bulk_solid_fraction", "coordination_pairs",

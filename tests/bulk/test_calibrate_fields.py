@@ -17,16 +17,13 @@ import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts, mixture_lambdas
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import calibrate_drifts as cd  # noqa: E402
+from mixflow.cli import command  # noqa: E402
+from mixflow.commands import calibrate_drifts as cd  # noqa: E402
 import drift_data as dd  # noqa: E402
 from mixflow import foamcase  # noqa: E402
 from mixflow.foamdict import read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
-from mixture_lambdas import load  # noqa: E402
+from mixflow.commands.mixture_lambdas import load  # noqa: E402
 
 NX, NY, LX, LY = 40, 12, 1.0, 0.3  # 0.025 m cells over the 0.8 x 0.2 m grid and beyond it
 FLOWING = 0.1  # 0.108 m/s: drops the slow bins (u_s 0.06-0.10), leaving some bins without a value
@@ -104,7 +101,7 @@ def expected(h5, constants, windows, how):
 def calibrate(check, case, target, label, args):
     """calibrate_drifts.py CASE --target TARGET --fields ARGS; exits on failure. Returns the
     command, its stdout and the JSON written."""
-    cmd = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
+    cmd = command("calibrate") + [case,
            "--target", target, "--fields", "--flowing-factor", str(FLOWING), "--bootstrap",
            "50"] + args
     r = subprocess.run(cmd, capture_output=True, text=True)

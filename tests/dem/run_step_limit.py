@@ -20,12 +20,10 @@ usage: run_step_limit.py --workdir DIR [--factor F] [--hertz-fraction X]
 """
 import argparse
 import math
-import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import stability_dem as sd  # noqa: E402
+from mixflow.commands import stability_dem as sd  # noqa: E402
 
 
 def main():

@@ -17,22 +17,22 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      directories other than 0, resume files) and inputs (Allrun, system/, constant/, 0/, 0.orig/,
      an output-like name inside system/ and 0/), exactly the inputs are copied; keep=("dem",
      "log.mixflowDem") takes dem/ along without its resume state and log, and that one log; an
-     existing DST stops the copy (FileExistsError).
+     existing DST stops the copy (FileExistsError);
+  5. the installed package is this checkout's (`import mixflow` from anywhere: mixflow.ROOT), and
+     `mixflow --help` and `mixflow VERB --help` of every verb exit 0.
 """
 import io
 import math
 import os
 import shutil
+import subprocess
 import sys
 from contextlib import redirect_stdout
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import suite  # noqa: E402
-from mixflow import foamcase, foamdict, outputs, paper  # noqa: E402
+import mixflow  # noqa: E402
+from mixflow.commands import suite  # noqa: E402
+from mixflow import cli, foamcase, foamdict, outputs, paper  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
@@ -129,6 +129,16 @@ except FileExistsError:
     raised = True
 check(raised, "copy_inputs into an existing directory: FileExistsError")
 check(not hasattr(suite, "OUTPUT_NAMES"), "scripts/suite.py has no output list of its own")
+
+# 5. the installed package and its command
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+check(os.path.samefile(mixflow.ROOT, ROOT), f"import mixflow: this checkout's package ({mixflow.ROOT}; "
+      "another checkout's is installed when not: run scripts/build.sh here)")
+for verb in [None, "bench"] + list(cli.VERBS):
+    args = ["--help"] if verb is None else [verb, "--help"]
+    r = subprocess.run(cli.command(*args), capture_output=True, text=True, cwd="/")
+    check(r.returncode == 0 and "usage" in r.stdout,
+          f"mixflow {' '.join(args)}: exit {r.returncode}" + (f" ({r.stderr.strip()[-200:]})" if r.returncode else ""))
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

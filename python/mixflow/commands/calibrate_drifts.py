@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The calibration command of the quasi two-phase bulk model (docs/calibration.md): constant drifts
 lambda_u, lambda_w, lambda_p from a finished CFD-DEM mixture case, written into a bulk case's
 constant/bulkProperties `drifts` block.
@@ -44,12 +43,11 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow import bulkprops, foamcase  # noqa: E402
-from mixflow.foamcase import FoamFileError, format_scalar_list  # noqa: E402
-from mixflow.foamdict import DictError, parse_dict  # noqa: E402
-from mixflow.paper import G  # noqa: E402
-from mixture_lambdas import load, quantiles, wls_slope  # noqa: E402
+from mixflow import bulkprops, foamcase
+from mixflow.foamcase import FoamFileError, format_scalar_list
+from mixflow.foamdict import DictError, parse_dict
+from mixflow.paper import G
+from mixflow.commands.mixture_lambdas import load, quantiles, wls_slope
 
 H5_IN_CASE = os.path.join("postProcessing", "mixture", "mixture.h5")
 # drift -> (bulkProperties key, the extractor's mask, solid and fluid quantity names)

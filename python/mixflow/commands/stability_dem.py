@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """DEM step against stiffness: where a run goes wrong as dt / T_R grows, at several softenings.
 
 Runs plain LIGGGHTS (/usr/bin/liggghts) with the simulator's contact lines (the paper material,

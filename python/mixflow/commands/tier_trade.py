@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The speed/accuracy trade of one scene across fidelity tiers (docs/suite.md).
 
 usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/reference]
@@ -27,10 +26,8 @@ import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "python"))
-from mixflow import observables as obs  # noqa: E402
-from mixflow.outputs import interpolated as at  # noqa: E402
+from mixflow import observables as obs
+from mixflow.outputs import interpolated as at
 
 TIMES = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5)  # default --times
 SCALARS = ("arrival_at_1.38m_s", "subcritical_after_arrival_s", "energy_excess_J_per_m")

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Cost against accuracy of each fidelity knob alone around the quick tier (docs/suite.md,
 "Choosing a tier"; results/trade/README.md).
 
@@ -25,15 +24,12 @@ import json
 import os
 import resource
 import subprocess
-import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import observables as obs  # noqa: E402
-from tier_trade import observables  # noqa: E402
+from mixflow import ROOT
+from mixflow.cli import command
+from mixflow import observables as obs
+from mixflow.commands.tier_trade import observables
 
 TIMES = (0.25, 0.5, 1.0, 1.5)
 SCENES = {"P": "P", "W+P": "WP"}  # scene -> tag suffix of its run directories
@@ -110,7 +106,7 @@ def sets(knob, value):
 
 
 def suite_cmd(knob, value, scene, work):
-    cmd = ["python3", "scripts/suite.py", "--tier", "quick", "--scenes", scene, "--work", work]
+    cmd = command("suite") + ["--tier", "quick", "--scenes", scene, "--work", work]
     for s in sets(knob, value):
         cmd += ["--set", s]
     return cmd
@@ -173,7 +169,7 @@ def lambdas(work, scene, compute):
     path = os.path.join(work, "lambdas.json")
     rec = read_json(path)
     if rec is None and compute:
-        import mixture_lambdas as ml
+        from mixflow.commands import mixture_lambdas as ml
         t0 = time.time()
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         ml.extract(os.path.join(work, scene), os.environ.get(

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """results/yield_stress/: the drag-viscosity closures against the single-grain references, and
 the quick HB&P and B&P under the verified default and under the paper-faithful variants.
 
@@ -55,12 +54,10 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.dont_write_bytecode = True
-import suite  # noqa: E402
-from mixflow import outputs  # noqa: E402
-from mixflow.outputs import nearest as at, read_series as series  # noqa: E402
+from mixflow.cli import command
+from mixflow.commands import suite
+from mixflow import ROOT, outputs
+from mixflow.outputs import nearest as at, read_series as series
 
 H = 0.6  # the paper's column height (m)
 VARIANTS = {
@@ -253,7 +250,7 @@ def variant(base, dst, edits):
 
 def mixtures(work):
     quick = os.path.join(work, "quick")
-    r = run([sys.executable, os.path.join(ROOT, "scripts/suite.py"), "--tier", "quick",
+    r = run(command("suite") + ["--tier", "quick",
              "--scenes", "HB+P,B+P,W+P", "--work", quick])
     if r.returncode != 0:
         sys.exit("suite.py failed")
@@ -317,7 +314,7 @@ def packing(work, fractions, reference_work):
     for item in fractions:
         frac, mu = item.split(":")
         d = os.path.join(work, f"packing-{frac}-{mu}")
-        r = run([sys.executable, os.path.join(ROOT, "scripts/suite.py"), "--tier", "reference",
+        r = run(command("suite") + ["--tier", "reference",
                  "--scenes", "W+P,HB+P", "--work", d, "--set",
                  f"sceneProperties.sample.solidFraction={frac}", "--set",
                  f"demDict.settle.friction={mu}"])

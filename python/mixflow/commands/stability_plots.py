@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plots and boundaries of results/stability from the sweeps' CSVs (stability_dem.py,
 stability_drag.py): dem_step.png, drag_interval.png and summary.json (the commands that made the
 CSVs and this, and the boundaries).
@@ -21,7 +20,7 @@ from collections import defaultdict
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
 
 COMMANDS = [

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The bulk model's solid rheology calibrated on the dry collapse P (docs/calibration.md): a grid of
 the yield coefficient tanPhi and the solid viscosity nu_s, each run as cases/P-bulk (the column of
 P with air as its pore fluid), scored by the granular front against the DEM run of P.
@@ -25,9 +24,8 @@ import math
 import os
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import bulkprops, foamcase, foamdict, outputs  # noqa: E402
+from mixflow.cli import command
+from mixflow import ROOT, bulkprops, foamcase, foamdict, outputs
 
 SCENE = "P-bulk"
 
@@ -147,7 +145,7 @@ def main():
 
     base = os.path.join(a.work, "base", SCENE)
     if not os.path.isfile(os.path.join(base, outputs.DONE)):
-        run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
+        run(command("suite") + ["--tier", "bulk",
              "--scenes", SCENE, "--work", os.path.dirname(base), "--set",
              f"cfdDict.cellSize={cell:g}"])
     grid = []

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Post-processing of scripts/liquid_results.sh (pure-liquid scenes).
 
   liquid_results.py --calibrate CASE T
@@ -25,11 +24,10 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival  # noqa: E402
-from mixflow.outputs import interpolated as at  # noqa: E402
-from mixflow.outputs import series  # noqa: E402  (series(case): the liquid time series)
-from mixflow.paper import L_SLUMP, PAPER_SUBCRITICAL, T_SLUMP  # noqa: E402
+from mixflow.froude import HOLD_S, first_time, subcritical_after_arrival
+from mixflow.outputs import interpolated as at
+from mixflow.outputs import series  # (series(case): the liquid time series)
+from mixflow.paper import L_SLUMP, PAPER_SUBCRITICAL, T_SLUMP
 
 
 def calibrate(case, t):

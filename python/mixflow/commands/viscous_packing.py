@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Loose against dense collapse in a viscous Newtonian liquid (Rondon, Pouliquen & Aussillous
 2011, Phys. Fluids 23, 073301): results/yield_stress/viscous_packing.csv and the
 "viscous_packing" entry of summary.json.
@@ -26,12 +25,9 @@ import os
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.dont_write_bytecode = True
-from mixflow import foamdict, outputs  # noqa: E402
-from yield_stress_results import observables, settled_fraction  # noqa: E402
+from mixflow.cli import command
+from mixflow import ROOT, foamdict, outputs
+from mixflow.commands.yield_stress_results import observables, settled_fraction
 
 RUNOUT_RATIO = 2.0  # loose / dense runout, Rondon et al. 2011 (about)
 RATIO_MIN = 1.5  # the check: the loose column runs at least 1.5 x the dense one's runout
@@ -74,12 +70,12 @@ def main():
            "runs": {}}
     for name, sets in packings.items():
         work = os.path.join(os.path.abspath(a.work), f"viscous-{a.viscosity}-{name}")
-        run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "reference",
+        run(command("suite") + ["--tier", "reference",
              "--scenes", "W+P", "--work", work, "--np", a.np,
              "--set", "sceneProperties.liquid.viscosity=" + a.viscosity] + sets)
         run_dir = os.path.join(work, "W+P")
         lam = os.path.join(work, "lambdas.json")
-        run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "mixture_lambdas.py"), "--work",
+        run(command("mixture-lambdas") + ["--work",
              work, "--scenes", "W+P", "--out", lam])
         with open(lam) as f:
             basal = json.load(f)["scenes"]["W&P"]["basal_pore_pressure"]

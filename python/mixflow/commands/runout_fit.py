@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Fit (l_inf - L)/L = lambda * a**alpha to finished dry-column scenes (Li & Zhao 2018 Eq. 12).
 
-usage: runout_fit.py WORKDIR OUTDIR COMMAND
+usage: mixflow runout-fit WORKDIR OUTDIR COMMAND
 Reads WORKDIR/P-I-*/postProcessing/dem/{summary.json,depositProfile.csv}, writes OUTDIR/runout.csv,
 summary.json, runout.png. The aspect ratio is the settled one (settled height / L), which is what the
 collapse actually starts from. Two runout rules are fitted (docs/parameters.md, frontGapDiameters):
@@ -9,6 +8,7 @@ collapse actually starts from. Two runout rules are fitted (docs/parameters.md, 
   thickness: end of the deposit at least one grain thick (the first x > L where the width-averaged
              column top falls below d); computed here from depositProfile.csv, as mixflowDem does.
 """
+import argparse
 import csv
 import glob
 import json
@@ -16,13 +16,17 @@ import os
 import shutil
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow.paper import D_P  # noqa: E402
-from mixflow.runout import fit_power_law, power_law_slope_error, thickness_front  # noqa: E402
+from mixflow.paper import D_P
+from mixflow.runout import fit_power_law, power_law_slope_error, thickness_front
 
 
-def main():
-    work, out, command = sys.argv[1], sys.argv[2], sys.argv[3]
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("work", metavar="WORKDIR", help="the suite's work directory of the P-I-* scenes")
+    p.add_argument("out", metavar="OUTDIR", help="where runout.csv, summary.json, runout.png go")
+    p.add_argument("command", metavar="COMMAND", help="the command recorded in summary.json")
+    a = p.parse_args(argv)
+    work, out, command = a.work, a.out, a.command
     rows = []
     for path in sorted(glob.glob(os.path.join(work, "P-I-*", "postProcessing", "dem", "summary.json"))):
         s = json.load(open(path))
@@ -36,7 +40,7 @@ def main():
                      "particles": s["settled"]["particles"], "young_modulus_pa": s["young_modulus_pa"],
                      "time_step_s": s["time_step_s"]})
     if len(rows) < 2:
-        sys.exit("runout_fit.py: need at least two finished scenes in " + work)
+        sys.exit("mixflow runout-fit: need at least two finished scenes in " + work)
     os.makedirs(out, exist_ok=True)
     # Keep each scene's own outputs beside the fit (small CSV/JSON files).
     for path in sorted(glob.glob(os.path.join(work, "P-I-*", "postProcessing", "dem", "summary.json"))):

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """results/bulk_model/: the bulk model of W&P, HB&P, B&P and the dry P against the CFD-DEM reference.
 
 usage: /usr/bin/python3 scripts/bulk_model_results.py [--work runs/bulk] [--reference runs/reference]
@@ -30,11 +29,9 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import foamcase, outputs  # noqa: E402
+from mixflow import ROOT, foamcase, outputs
 
 SCENES = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 TIMES = (0.5, 1.0, 1.5, 2.0, 3.0)

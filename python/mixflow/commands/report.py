@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
 
 usage: report.py [--work runs/reference[,runs/quick,...]] [--out results/li_zhao_2018]
@@ -24,17 +23,15 @@ import traceback
 
 import numpy as np
 
-sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-import suite  # noqa: E402  (scene list, dictionary reader)
-from mixflow import outputs  # noqa: E402
-from mixflow.froude import HOLD_S  # noqa: E402
-from mixflow.observables import (  # noqa: E402
+from mixflow.commands import suite  # (scene list, dictionary reader)
+from mixflow import outputs
+from mixflow.froude import HOLD_S
+from mixflow.observables import (
     clean, col, fmt, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
     granular_front, subcritical, subcritical_volume_depth, back_wall_key,
     back_wall, particle_energies, energy_excess, e_pd, e_fc, savage,
     collision_interval, stage_change, outflow_start, runout_law)
-from mixflow.paper import (DRY_SERIES, L_SLUMP, LIQUIDS, MIXTURES, PAPER,  # noqa: E402,F401
+from mixflow.paper import (DRY_SERIES, L_SLUMP, LIQUIDS, MIXTURES, PAPER,  # noqa: F401
                            PAPER_NAME, SECTION_X, T_SLUMP)
 
 STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Serial against parallel mixture runs: the collapse's own sensitivity or a parallel defect?
 
 usage: python3 scripts/reproducibility.py [--scenes W+P,HB+P] [--ranks 2]
@@ -30,10 +29,7 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.dont_write_bytecode = True
-from mixflow import foamcase, foamdict, outputs  # noqa: E402
+from mixflow import ROOT, foamcase, foamdict, outputs
 
 PERTURBATION = 1e-12
 QUANTITIES = {"granular_front_m": ("dem", "front_x_m"),

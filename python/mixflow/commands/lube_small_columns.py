@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Lube et al.'s (2005) small-a claims measured on the paper's grains: small dry columns of
 several aspect ratios in a wide (periodic) channel, run until they arrest.
 
@@ -21,10 +20,8 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import outputs  # noqa: E402
-from mixflow.runout import fit_power_law  # noqa: E402
+from mixflow import ROOT, outputs
+from mixflow.runout import fit_power_law
 COLUMN = os.path.join(ROOT, "tests", "collapse", "column")
 D = 0.012
 

@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Where a coupled run's liquid kinetic energy sits: its split by the cells' liquid fraction.
 
-usage: liquid_ke_by_alpha.py CASE TIME [TIME ...]
+usage: mixflow liquid-ke-by-alpha CASE TIME [TIME ...]
 
 Reads TIME/U, voidfraction and alpha.liquid (ASCII, as the cases write them) of a mixture case
 on a uniform mesh (the generated channel meshes; equal cell volumes). For the bands
@@ -10,25 +9,25 @@ sum eps alpha |U|^2 (the liquid kinetic energy of postProcessing/liquid, up to 1
 their largest |U|. A large share at small alpha means that air velocities, carried by the VOF
 mixture velocity, dominate the liquid's kinetic energy (coupling/README.md, "Exchange interval").
 """
+import argparse
 import os
-import sys
 
 import numpy as np
 
-sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow.foamcase import read_internal_field  # noqa: E402  (the tests' ASCII field reader)
+from mixflow.foamcase import read_internal_field  # (the tests' ASCII field reader)
 
 
 def read_field(path):
     return np.array(read_internal_field(path), dtype=float)
 
 
-def main(argv):
-    if len(argv) < 2:
-        sys.exit(__doc__)
-    case = argv[0]
-    for t in argv[1:]:
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("case", metavar="CASE")
+    p.add_argument("times", metavar="TIME", nargs="+")
+    a = p.parse_args(argv)
+    case = a.case
+    for t in a.times:
         d = os.path.join(case, t)
         u = read_field(os.path.join(d, "U"))
         eps = read_field(os.path.join(d, "voidfraction"))
@@ -44,4 +43,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    main()

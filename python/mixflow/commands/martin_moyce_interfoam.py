@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Martin & Moyce (1952) column collapse (n^2 = 1): mixflowFoam vs Debian's interFoam vs experiment.
 
     /usr/bin/python3 scripts/martin_moyce_interfoam.py [--work /tmp/mm_interfoam] [--cells 40]
@@ -28,17 +27,13 @@ import math
 import os
 import shlex
 import subprocess
-import sys
 import time
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "tests/cfd"))  # run_liquid_cases, a test driver
-import run_liquid_cases as rlc  # noqa: E402
-from mixflow import outputs  # noqa: E402
+from mixflow import liquidcase as rlc
+from mixflow import ROOT, outputs
+from mixflow.paper import G
 
 SIDE = rlc.MM_SIDE
 
@@ -103,7 +98,7 @@ def main():
     mix_case, mix, t_mix = run(a, "mixflowFoam", a.solver)
     if_case, itf, t_if = run(a, "interFoam", a.interfoam, lib)
 
-    ts = math.sqrt(SIDE / rlc.G)
+    ts = math.sqrt(SIDE / G)
     t_end = min(mix[-1]["time_s"], itf[-1]["time_s"]) / ts
     ref = {q: dict(pts) for q, pts in rlc.read_martin_moyce(a.reference).items()}
 

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
@@ -31,10 +30,9 @@ import os
 import shutil
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from mixflow.cli import command
 ESTIMATE = {"tanPhi": "0.4663", "viscosity": "0.03"}  # stage A0's solid: tan 25 deg, nu_s estimated
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import bulkprops, foamcase, outputs  # noqa: E402
+from mixflow import ROOT, bulkprops, foamcase, outputs
 
 
 def last(path, column):
@@ -62,7 +60,7 @@ def drift_stage(rec, key, options, case_a, ref, ref_front, a):
     REC[KEY] (its result, or why it did not run), REC[KEY + '_calibration'] (the calibration's
     printout) and REC[KEY + '_drifts'] (its JSON)."""
     case = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
-    cal = run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), ref,
+    cal = run(command("calibrate") + [ref,
                "--target", case, "--flowing-factor", a.flowing_factor] + options, fatal=False)
     if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
         rec[key] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
@@ -131,7 +129,7 @@ def main():
                                 "front_x_m")
         work = os.path.join(a.work, "A0")
         shutil.rmtree(os.path.join(work, scene), ignore_errors=True)
-        run([sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", "bulk",
+        run(command("suite") + ["--tier", "bulk",
              "--scenes", scene, "--work", work, "--set", f"cfdDict.cellSize={a.cell_size}"]
             + [x for k, v in ESTIMATE.items() for x in ("--set", f"bulkProperties.solid.{k}={v}")])
         case_a0 = os.path.join(work, scene)

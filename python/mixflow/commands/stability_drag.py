@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The coupled exchange interval T against the drag's relaxation number s = beta T / m.
 
 A lone glass grain (d 0.5 mm, rho_p 2500) settles in a closed box of liquid (rho_f 1000, viscosity
@@ -26,10 +25,7 @@ import os
 import shutil
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "coupling"))
-sys.dont_write_bytecode = True
-import coupledcase as cc  # noqa: E402
+from mixflow import coupledcase as cc
 
 D, RHO_P, RHO_F, G = 5e-4, 2500.0, 1000.0, 9.81
 MAX_CELLS = 200  # box height in cells of 5 d

@@ -16,16 +16,13 @@ import argparse
 import json
 import math
 import os
-import sys
 
 import numpy as np
 
-sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from mixflow import observables as obs  # noqa: E402
-import suite  # noqa: E402
-from mixflow.froude import first_time, subcritical_from  # noqa: E402
-from mixflow.paper import MIXTURES, PAPER, PAPER_NAME, SECTION_X  # noqa: E402
+from mixflow import observables as obs
+from mixflow.commands import suite
+from mixflow.froude import first_time, subcritical_from
+from mixflow.paper import MIXTURES, PAPER, PAPER_NAME, SECTION_X
 
 PAPER_SUBCRITICAL = {PAPER_NAME[n]: PAPER["subcritical"][n] for n in MIXTURES}
 PAPER_SAVAGE_B = list(PAPER["savage_interval_BP"])

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The drift coefficients a user takes to calibrate the quasi two-phase model: mixflowExtract on
 finished mixture runs, and robust summaries of lambda_u, lambda_w and lambda_p (its density and raw
 conventions, mixture_extract/README.md) over the flowing bins. Also written into the "lambdas"
@@ -32,7 +31,7 @@ import sys
 import h5py
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from mixflow import ROOT
 LABEL = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 
 

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Runs the scenes of Li & Zhao (2018) Table 1 at a fidelity tier (docs/suite.md).
 
 usage: suite.py --tier quick|reference|paper|FILE [--np N] [--scenes P,W,HB+P,...] [--work DIR]
@@ -29,13 +28,11 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from mixflow import outputs  # noqa: E402
-from mixflow.foamcase import run_env  # noqa: E402
-from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: E402,F401
+from mixflow import ROOT, outputs
+from mixflow.foamcase import run_env
+from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: F401
                               leaves, list_value, parse_dict, read_dict, unquote)
-from mixflow.paper import D_P, TABLE1  # noqa: E402
+from mixflow.paper import D_P, TABLE1
 
 CASES = os.path.join(ROOT, "cases")
 TIERS = os.path.join(CASES, "tiers")
@@ -620,7 +617,7 @@ def print_plan(plans, tier, args):
             print(f"    {FILES[fkey]:<28} {dotted:<28} {v:<10} {action}")
 
 
-def main(argv=None):
+def run(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tier", required=True, help="quick, reference, paper or a tier file")
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per scene (default 1)")
@@ -687,8 +684,12 @@ def main(argv=None):
     return 1 if failed else 0
 
 
-if __name__ == "__main__":
+def main(argv=None):
     try:
-        sys.exit(main())
+        return run(argv)
     except KeyboardInterrupt:
-        sys.exit("suite.py: interrupted; the same command resumes (docs/suite.md)")
+        sys.exit("mixflow suite: interrupted; the same command resumes (docs/suite.md)")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Does the start's pressure decide a yield-stress mixture's pore pressure? The quick HB+P
 (cases/W+P-quick with case HB+P's liquid) run twice from one settled sample to 0.3 s: from the
 cases' initial p_rgh = 0 (p = -rho g y: the solver finds the pressure), and from hydrostatic
@@ -17,13 +16,9 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.dont_write_bytecode = True
-import reproducibility  # noqa: E402
-from mixflow import foamcase as fc  # noqa: E402
-from mixflow import outputs  # noqa: E402
+from mixflow.commands import reproducibility
+from mixflow import foamcase as fc
+from mixflow import ROOT, outputs
 
 G = 9.81
 
