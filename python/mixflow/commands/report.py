@@ -24,7 +24,7 @@ import traceback
 import numpy as np
 
 from mixflow.commands import suite  # (scene list, dictionary reader)
-from mixflow import outputs
+from mixflow import outputs, schema
 from mixflow.froude import HOLD_S
 from mixflow.observables import (
     clean, col, fmt, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
@@ -298,7 +298,7 @@ def locked(s):
         cp = suite.read_dict(os.path.join(s.dir, "constant", "couplingProperties"))
     except (OSError, suite.DictError):
         return ""
-    if cp.get("dragIntegration", "implicit") == "held":
+    if schema.value(cp, "constant/couplingProperties", "dragIntegration") == "held":
         return ""
     ys = yield_stress_summary()
     runs = ys.get("paper_faithful", {}).get("runs", {}).get(PAPER_NAME[s.name], {})

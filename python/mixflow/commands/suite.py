@@ -28,11 +28,11 @@ import subprocess
 import sys
 import time
 
-from mixflow import ROOT, outputs
+from mixflow import ROOT, outputs, schema
 from mixflow.foamcase import run_env
 from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: F401
                               leaves, list_value, parse_dict, read_dict, unquote)
-from mixflow.paper import D_P, TABLE1
+from mixflow.paper import TABLE1
 
 CASES = os.path.join(ROOT, "cases")
 TIERS = os.path.join(CASES, "tiers")
@@ -466,13 +466,14 @@ def scene_size(case_dir, texts, content):
     L, H, W = (float(sp["sample"][k]) for k in ("length", "height", "width"))
     particles = cells = None
     if content in ("particles", "mixture"):
-        dp = float(sp.get("particles", {}).get("diameter", D_P))
-        phi = float(sp["sample"].get("solidFraction", 0.6056))
+        dp = float(schema.value(sp, FILES["sceneProperties"], "particles.diameter"))
+        phi = float(schema.value(sp, FILES["sceneProperties"], "sample.solidFraction"))
         particles = phi * L * H * W / (math.pi / 6 * dp ** 3)
     if content in ("liquid", "mixture"):
         cfd = d("cfdDict")
         dx = float(cfd.get("cellSize", H / 20)) if cfd.get("cellSize", "auto") != "auto" else H / 20
-        nz = 1 if cfd.get("dimensions", "3") == "2" else max(1, round(W / dx))
+        two_d = int(float(schema.value(cfd, FILES["cfdDict"], "dimensions"))) == 2
+        nz = 1 if two_d else max(1, round(W / dx))
         cells = round(float(sp["channel"]["length"]) / dx) * round(float(sp["channel"]["height"]) / dx) * nz
         cells = {"cells": cells, "dx": dx}
     return {"particles": particles, "cells": cells, "H": H}
