@@ -92,6 +92,7 @@ def main():
                     help="take a run's figures from its WORK directory when it ran the same inputs")
     a = ap.parse_args()
     exe = os.path.join(os.path.abspath(a.bin), "mixflowDem")
+    os.environ["MIXFLOW_BUILD"] = os.path.dirname(os.path.abspath(a.bin))  # its mixflowSchema: defaults
     stiffen = {"from": a.stiffen_from, "steps": a.steps, "time": a.step_time}
     seeds = [int(s) for s in a.seeds.split(",")]
     out = {"command": "bench/stiffened_settle.py " + " ".join(sys.argv[1:]),
