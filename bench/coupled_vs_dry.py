@@ -288,7 +288,7 @@ def main():
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry,
         "dry_collapse_cpu_s_by_difference": c_dry_diff, "target_ratio": 1.3,
         "runs": runs,
-        "command": " ".join(["python3 bench/coupled_vs_dry.py"] + sys.argv[1:]),
+        "command": " ".join(["mixflow bench coupled_vs_dry"] + sys.argv[1:]),
     }
     print(json.dumps(res, indent=2))
     if a.json:

@@ -17,7 +17,7 @@ energy (a run whose kinetic energy passes the column's initial potential energy,
 that is still running after --timeout seconds with its step cut by the Courant limit, is
 'diverged').
 
-Usage: python3 bench/piso_correctors.py [--mu 1,5,25,100,250,1000] [--correctors 2,3,4,10,20]
+Usage: mixflow bench piso_correctors [--mu 1,5,25,100,250,1000] [--correctors 2,3,4,10,20]
                                         [--json OUT] [--csv OUT] [--work DIR] [--bin build/bin]
 """
 
@@ -161,7 +161,7 @@ def main():
             print(f"{mu:>10g} {row['viscous_number_D']:>7.3g} {n:>5d} {r['cpu_s']:>7.2f} "
                   f"{fmt(df, '10.2e')} {fmt(dk, '11.2e')}  {state}", flush=True)
         print(f"  ({time.time() - t_start:.0f} s wall so far)", flush=True)
-    cmd = "python3 bench/piso_correctors.py " + " ".join(sys.argv[1:])
+    cmd = "mixflow bench piso_correctors " + " ".join(sys.argv[1:])
     out = {"command": cmd, "case": "2-D Newtonian column 0.1 x 0.1 m, channel 0.3 x 0.15 m, "
            f"cells {DX} m, dt {DT} s fixed, end {a.end} s", "runs": rows}
     if a.json:

@@ -12,7 +12,7 @@ PKGS=(build-essential cmake pkg-config git
       libopenmpi-dev openmpi-bin
       libhdf5-dev hdf5-tools
       python3 python3-numpy python3-h5py python3-matplotlib
-      python3-pip python3-setuptools python3-wheel
+      python3-pip python3-setuptools python3-wheel python3-pyflakes
       libgtest-dev bzip2 dpkg-dev)
 
 SUDO=""

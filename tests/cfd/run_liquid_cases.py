@@ -20,7 +20,7 @@ mixflowFoam (serial, or decomposePar + mpirun -np 2 ... -parallel + reconstructP
                    the shallow-water limit is 2). Measured |Z - Z_exp|: 0.11 ... 0.56, worst
                    relative 14.9 % at T = 0.62. The lead is the VOF model's, not ours: Debian's
                    interFoam on the same a/40 case gives a byte-identical Z(T) and eta(tau)
-                   (scripts/martin_moyce_interfoam.py, results/pure_liquids/
+                   (mixflow martin-moyce-interfoam, results/pure_liquids/
                    martin_moyce_interfoam.csv; dZ/dT on 1 <= T <= 3: 1.64 both, data 1.41).
                  - |eta - eta_exp| <= 0.05 for tau <= 3.08 (measured worst 0.033).
                  - Ritter: Z <= 1 + 2T at every time step, on every mesh (measured margin >= 0).

@@ -10,7 +10,7 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
   2. foamcase.set_entry: an existing top-level entry is set with the rest of the file kept byte for
      byte; an absent entry or a block stops with "cannot set KEY in PATH" (exit status 1);
   3. paper: the pure liquids' subcritical times are those of PAPER, '+' -> '&' in the paper's
-     names; scripts/suite.py's DictError and TABLE1 are the package's (report.py catches
+     names; mixflow suite's DictError and TABLE1 are the package's (report.py catches
      suite.DictError);
   4. outputs.copy_inputs: of a case holding every kind of output a run leaves at its top level
      (postProcessing, VTK, dem, .done, .failed, log.*, previous-run.*, processor*, time
@@ -85,7 +85,7 @@ for key in ("startTime", "functions"):
     check(status == 1 and f"cannot set {key} in {ctrl}" in out.getvalue(),
           f"set_entry of {key} ({'absent' if key == 'startTime' else 'a block'}) stops with status 1")
 
-# 3. paper and the names scripts/suite.py takes from the package
+# 3. paper and the names mixflow suite takes from the package
 check(paper.PAPER_SUBCRITICAL == {"W": 1.2, "HB": 1.1, "B": 1.0}
       and all(paper.PAPER["subcritical"][k] == v for k, v in paper.PAPER_SUBCRITICAL.items()),
       "paper: the pure liquids' subcritical times")
@@ -133,7 +133,7 @@ try:
 except FileExistsError:
     raised = True
 check(raised, "copy_inputs into an existing directory: FileExistsError")
-check(not hasattr(suite, "OUTPUT_NAMES"), "scripts/suite.py has no output list of its own")
+check(not hasattr(suite, "OUTPUT_NAMES"), "mixflow suite has no output list of its own")
 
 # 5. the installed package and its command
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The dictionary editor (python/mixflow/foamdict.py) and scripts/suite.py's tier files, plan and
+"""The dictionary editor (python/mixflow/foamdict.py) and mixflow suite's tier files, plan and
 resume bookkeeping (no simulation).
 
 usage: test_suite.py WORKDIR

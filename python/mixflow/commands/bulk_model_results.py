@@ -1,15 +1,15 @@
 """results/bulk_model/: the bulk model of W&P, HB&P, B&P and the dry P against the CFD-DEM reference.
 
-usage: /usr/bin/python3 scripts/bulk_model_results.py [--work runs/bulk] [--reference runs/reference]
+usage: mixflow bulk-model-results [--work runs/bulk] [--reference runs/reference]
                                                       [--out results/bulk_model]
-after `python3 scripts/suite.py --tier bulk --scenes W+P,HB+P,B+P --work runs/bulk` and
-`python3 scripts/suite.py --tier reference --scenes W+P,HB+P,B+P,P --work runs/reference`.
+after `mixflow suite --tier bulk --scenes W+P,HB+P,B+P --work runs/bulk` and
+`mixflow suite --tier reference --scenes W+P,HB+P,B+P,P --work runs/reference`.
 
 Reads, per mixture, the tier bulk run (WORK/<scene>: postProcessing/liquid/timeSeries.csv, the
 mixture's front) and the CFD-DEM run (REFERENCE/<scene>: the granular front of
 postProcessing/dem/timeSeries.csv), and the committed
-results: OUT/stages.json (scripts/bulk_stages.py: the front error per calibration stage at 0.075 m),
-OUT/solid_calibration.json (scripts/calibrate_solid.py: the dry P against its DEM run) and
+results: OUT/stages.json (mixflow bulk-stages: the front error per calibration stage at 0.075 m),
+OUT/solid_calibration.json (mixflow calibrate-solid: the dry P against its DEM run) and
 results/bench/bulk_vs_cfddem*.json (bench/bulk_vs_cfddem.py: solver CPU, bulk against CFD-DEM,
 measured in one run). Writes OUT/summary.json, OUT/fronts.csv (fronts at 0.5, 1, 1.5, 2, 3 s) and
 OUT/fronts.png (front against time, bulk and CFD-DEM, per scene), OUT/profiles.png (the bulk
@@ -17,7 +17,7 @@ mixture's surface against the CFD-DEM liquid's at 0.5, 1 and 3 s, with the CFD-D
 deposit) and OUT/velocity.png (the bulk model's reconstructed u_s and u_f against the CFD-DEM grains'
 u(y) at the section and time of the scene's demDict velocityProfile; the bulk cell centres from
 OpenFOAM's `postProcess -func writeCellCentres`). The Froude number and the back-wall height
-beside CFD-DEM's are in the reproduction report (scripts/report.py --bulk-work).
+beside CFD-DEM's are in the reproduction report (mixflow report --bulk-work).
 """
 
 import argparse
@@ -120,7 +120,7 @@ def main():
     a = p.parse_args()
     stages = load(os.path.join(a.out, "stages.json"))
     solid = load(os.path.join(a.out, "solid_calibration.json"))
-    out = {"command": "/usr/bin/python3 scripts/bulk_model_results.py " + " ".join(sys.argv[1:]),
+    out = {"command": "mixflow bulk-model-results " + " ".join(sys.argv[1:]),
            "stage": "A: lambda = 1, alpha_s constant, the solid rheology calibrated on the dry P "
                     "(the bulk model's defaults)",
            "reference": f"CFD-DEM tier reference ({a.reference})",

@@ -1,6 +1,6 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
-usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
+usage: mixflow bulk-stages [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
           [--estimators wls,median] [--field-mean wls] [--window-span 5] [--reference runs/reference]
           [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
@@ -8,12 +8,12 @@ usage: /usr/bin/python3 scripts/bulk_stages.py [--scenes W+P,HB+P,B+P] [--cell-s
 For each scene: the tier `bulk` case at --cell-size (`suite.py --tier bulk --set
 cfdDict.cellSize=...`) with the uncalibrated solid estimate (stage A0: lambda = 1, tanPhi = tan 25 deg,
 nu_s 0.03 m2/s); the same case with the solid block of --solid-from's constant/bulkProperties
-(stage A: lambda = 1, the solid rheology calibrated on the dry scene P by scripts/calibrate_solid.py,
+(stage A: lambda = 1, the solid rheology calibrated on the dry scene P by mixflow calibrate-solid,
 the bulk model's default); then stage A's case with the constant drifts calibrated from the
-CFD-DEM reference run's extraction, once per --estimators entry (stage B: `scripts/calibrate_drifts.py
+CFD-DEM reference run's extraction, once per --estimators entry (stage B: `mixflow calibrate
 REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B) or median (key
 B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
-scripts/mixture_lambdas.py) and run again (`./Allrun`); stage C: stage A's case with the drift
+mixflow mixture-lambdas) and run again (`./Allrun`); stage C: stage A's case with the drift
 fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
 docs/calibration.md "Stage C"); stage C_t: the same with the drift fields of every extraction
 window, lambda(x, y, t), linear in time (`--fields --per-window --window-span K --field-mean M`:
@@ -119,8 +119,8 @@ def main():
         sys.exit(f"bulk_stages: {bulkprops.path(a.solid_from)}: {e}")
     if not isinstance(solid, dict) or not solid:
         sys.exit(f"bulk_stages: --solid-from {a.solid_from}: {bulkprops.path(a.solid_from)} has no "
-                 "solid { ... } block (scripts/calibrate_solid.py --target writes one)")
-    out = {"command": "/usr/bin/python3 scripts/bulk_stages.py " + " ".join(sys.argv[1:]),
+                 "solid { ... } block (mixflow calibrate-solid --target writes one)")
+    out = {"command": "mixflow bulk-stages " + " ".join(sys.argv[1:]),
            "cell_size_m": float(a.cell_size), "solid": solid, "solid_A0": ESTIMATE,
            "solid_from": os.path.relpath(os.path.abspath(a.solid_from), ROOT), "scenes": {}}
     for scene in a.scenes.split(","):

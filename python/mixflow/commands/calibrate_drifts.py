@@ -2,7 +2,7 @@
 lambda_u, lambda_w, lambda_p from a finished CFD-DEM mixture case, written into a bulk case's
 constant/bulkProperties `drifts` block.
 
-usage: /usr/bin/python3 scripts/calibrate_drifts.py SOURCE [--target CASE] [--estimator wls|median]
+usage: mixflow calibrate SOURCE [--target CASE] [--estimator wls|median]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
            [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]

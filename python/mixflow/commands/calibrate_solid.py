@@ -2,7 +2,7 @@
 the yield coefficient tanPhi and the solid viscosity nu_s, each run as cases/P-bulk (the column of
 P with air as its pore fluid), scored by the granular front against the DEM run of P.
 
-usage: /usr/bin/python3 scripts/calibrate_solid.py REFERENCE [--tan-phi 0.3,0.35,...]
+usage: mixflow calibrate-solid REFERENCE [--tan-phi 0.3,0.35,...]
            [--viscosity 0.003,...,0.1] [--cell-size 0.075] [--times 0.25:3:0.25]
            [--work runs/solid-calibration] [--target CASE ...] [--out FILE.json]
 
@@ -168,7 +168,7 @@ def main():
         print(f"{label}: rms front error {100 * rec['rms_error']:.1f} %, "
               f"at {times[-1]:g} s {100 * rec['final_error']:+.1f} %", flush=True)
     best = min(grid, key=lambda r: r["rms_error"])
-    out = {"command": "/usr/bin/python3 scripts/calibrate_solid.py " + " ".join(sys.argv[1:]),
+    out = {"command": "mixflow calibrate-solid " + " ".join(sys.argv[1:]),
            "reference": os.path.relpath(os.path.abspath(a.reference), ROOT), "reference_end_s": ref_end,
            "cell_size_m": cell, "times_s": times, "reference_front_m": [ref[t] for t in times],
            "rheology": a.rheology, "score": "rms of front_bulk / front_dem - 1 over times_s",

@@ -5,7 +5,7 @@ p_rgh = rho_l g h_s in the liquid. Printed, and written to OUT: the liquid press
 wall's cell column at the first write and at 0.3 s against hydrostatic rho_l g (h_s - y), and
 the grains' released potential energy.
 
-usage: /usr/bin/python3 scripts/initial_pressure_check.py [--work runs/initial_pressure]
+usage: mixflow initial-pressure-check [--work runs/initial_pressure]
                                                          [--out results/yield_stress/initial_pressure.json]
 """
 
@@ -83,7 +83,7 @@ def main():
                            stderr=subprocess.STDOUT)
     if r.returncode != 0 or "End" not in open(os.path.join(hyd, "log.mixflowCoupled")).read():
         sys.exit(f"{hyd}: mixflowCoupled failed (log.mixflowCoupled)")
-    out = {"command": "/usr/bin/python3 scripts/initial_pressure_check.py", "runs": {}}
+    out = {"command": "mixflow initial-pressure-check", "runs": {}}
     for label, case in (("solved", base), ("hydrostatic", hyd)):
         t = [name for value, name in fc.time_dirs(case) if value > 0]
         out["runs"][label] = {"first_write": {"time_s": float(t[0]), "column": profile(case, t[0], rho)},

@@ -1,20 +1,20 @@
 """Cost against accuracy of each fidelity knob alone around the quick tier (docs/suite.md,
 "Choosing a tier"; results/trade/README.md).
 
-usage: /usr/bin/python3 scripts/knob_trade.py [--runs /work/runs-trade] [--out results/trade]
+usage: mixflow knob-trade [--runs /work/runs-trade] [--out results/trade]
                                               [--only TAG,...] [--skip TAG,...] [--budget CPU_S]
                                               [--report-only] [--lambdas]
 
-Each run is `nice -n 15 python3 scripts/suite.py --tier quick --scenes SCENE --work RUNS/TAG
+Each run is `nice -n 15 mixflow suite --tier quick --scenes SCENE --work RUNS/TAG
 --set ...` (one at a time; a scene with .done is skipped, so the plan resumes). Its cost is the
 CPU time of suite.py and its children (getrusage RUSAGE_CHILDREN, user + sys), accumulated over
 attempts in RUNS/TAG/rusage.json, with the wall time beside it. --budget stops starting runs
 once the CPU spent by all runs of the plan exceeds it.
 
 The report (also --report-only, which reads finished runs only): per knob and scene the
-observables of scripts/tier_trade.py's observables() plus the Savage window (the longest
+observables of mixflow tier-trade's observables() plus the Savage window (the longest
 interval with N_sav > 0.1) and, with --lambdas, the drift coefficients of every finished mixture
-run (scripts/mixture_lambdas.py, under a second of CPU a run; cached in RUNS/TAG/lambdas.json);
+run (mixflow mixture-lambdas, under a second of CPU a run; cached in RUNS/TAG/lambdas.json);
 the change of each against the knob's reference (its finest run that finished), the CPU cost and
 its ratio to the reference's. Writes OUT/summary.json, OUT/table.md, OUT/trade.png.
 """
@@ -238,7 +238,7 @@ def key(tk, name):
 
 
 def report(runs, out, compute_lambdas):
-    res = {"command": "/usr/bin/python3 scripts/knob_trade.py --runs " + runs +
+    res = {"command": "mixflow knob-trade --runs " + runs +
            (" --lambdas" if compute_lambdas else ""), "times_s": list(TIMES),
            "cost": "CPU s (user + sys of suite.py and its children, getrusage)",
            "change": "value minus the reference's (abs) and that over |reference| (rel)",
@@ -317,7 +317,7 @@ def markdown(res):
            for v, r in kd[sc].items() if r and r["status"] == "done"
            and "lambda_u_median" in r["observables"]]
     if lam:
-        lines += ["", "Drift coefficients of W+P (scripts/mixture_lambdas.py: medians over the "
+        lines += ["", "Drift coefficients of W+P (mixflow mixture-lambdas: medians over the "
                   "flowing bins, and the weighted least-squares slopes):", "",
                   "| knob | value | lambda_u | lambda_w | lambda_p (density) | u slope | w slope |",
                   "|---|---|---|---|---|---|---|"]

@@ -1,7 +1,7 @@
 """Lube et al.'s (2005) small-a claims measured on the paper's grains: small dry columns of
 several aspect ratios in a wide (periodic) channel, run until they arrest.
 
-usage: /usr/bin/python3 scripts/lube_small_columns.py [--lengths 0.15,0.3] [--aspects 0.5,0.75,1,1.5]
+usage: mixflow lube-small-columns [--lengths 0.15,0.3] [--aspects 0.5,0.75,1,1.5]
           [--work runs/lube_small_columns] [--out results/runout_scaling/lube_small_columns.json]
 
 Each column is tests/collapse/column's (paper material, 1.2 cm beads, a periodic 5 d slab: no side
@@ -63,7 +63,7 @@ def main():
         os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build")), "bin", "mixflowDem"))
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
-    out = {"command": "/usr/bin/python3 scripts/lube_small_columns.py " + " ".join(sys.argv[1:]),
+    out = {"command": "mixflow lube-small-columns " + " ".join(sys.argv[1:]),
            "lube_2005": {"lambda": 1.2, "alpha": 1.0, "summit_intact_below_a": 1.8},
            "alpha_band": [0.8, 1.0], "lengths": {}}
     for L in (float(v) for v in a.lengths.split(",")):

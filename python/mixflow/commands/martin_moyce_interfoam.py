@@ -1,6 +1,6 @@
 """Martin & Moyce (1952) column collapse (n^2 = 1): mixflowFoam vs Debian's interFoam vs experiment.
 
-    /usr/bin/python3 scripts/martin_moyce_interfoam.py [--work /tmp/mm_interfoam] [--cells 40]
+    mixflow martin-moyce-interfoam [--work /tmp/mm_interfoam] [--cells 40]
 
 Question: is the lead of the simulated front over the experiment (dZ/dT on 1 <= T <= 3: 1.64 vs
 1.41) ours or the VOF model's? Answer at a/40: interFoam's time series is byte-identical to ours.

@@ -3,7 +3,7 @@ finished mixture runs, and robust summaries of lambda_u, lambda_w and lambda_p (
 conventions, mixture_extract/README.md) over the flowing bins. Also written into the "lambdas"
 entry of results/yield_stress/summary.json when that file exists.
 
-usage: /usr/bin/python3 scripts/mixture_lambdas.py --work runs/reference [--scenes W+P,HB+P,B+P]
+usage: mixflow mixture-lambdas --work runs/reference [--scenes W+P,HB+P,B+P]
                                                    [--out results/yield_stress/lambdas.json]
 
 For each scene WORK/<scene> (a finished suite run): system/extractDict is written (grid x 0 to 3 m
@@ -18,7 +18,7 @@ postProcessing/mixture/mixture.h5:
     |u_s| cannot blow up;
   - the basal pore pressure under the initial column against hydrostatic, per window up to 1 s
     (basal_pore_pressure).
-load() (the file's arrays) and wls_slope() are shared with scripts/calibrate_drifts.py.
+load() (the file's arrays) and wls_slope() are shared with mixflow calibrate.
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
 
@@ -38,7 +38,7 @@ LABEL = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 def extract(run_dir, build):
     with open(os.path.join(run_dir, "system", "extractDict"), "w") as f:
         f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
-                "// written by scripts/mixture_lambdas.py\n"
+                "// written by mixflow mixture-lambdas\n"
                 "grid { x (0 3 50); y (0 0.72 12); }\n"
                 "windows { start 0; width 0.1; }\n"
                 "fluid { source openfoam; }\n")
@@ -143,7 +143,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress", "lambdas.json"))
     a = ap.parse_args()
     build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
-    res = {"command": "/usr/bin/python3 scripts/mixture_lambdas.py --work runs/reference",
+    res = {"command": "mixflow mixture-lambdas --work runs/reference",
            "flowing_rule": "lambda valid, alpha_s >= 0.1, |u_s| >= 0.05 m/s",
            "grid": "x 0-3 m / 0.06 m, y 0-0.72 m / 0.06 m, windows 0.1 s", "scenes": {}}
     for scene in a.scenes.split(","):

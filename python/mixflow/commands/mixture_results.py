@@ -1,9 +1,9 @@
 """results/mixtures/: fronts, Froude and Savage numbers of the three mixture scenes from a
 suite work directory, and summary.json with the paper's numbers beside ours.
 
-    python3 scripts/mixture_results.py [--work runs/reference] [--out results/mixtures]
+    mixflow mixture-results [--work runs/reference] [--out results/mixtures]
 
-Rules (the same as scripts/report.py's, from mixflow.observables):
+Rules (the same as mixflow report's, from mixflow.observables):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
     the first time after t0 from which Fr < 1 holds for HOLD_S (python/mixflow/froude.py), minus t0.
     Coarse mixture meshes thin the front below alpha = 0.5 before the section; then the arrival is
@@ -55,7 +55,7 @@ def main():
 
     scenes = {n: obs.Scene(work, n) for n in MIXTURES}
     done = {n: s for n, s in scenes.items() if s.done}
-    summary = {"command": f"python3 scripts/mixture_results.py --work {a.work} --out {a.out}",
+    summary = {"command": f"mixflow mixture-results --work {a.work} --out {a.out}",
                "work": work, "scenes": {}, "subcritical_after_arrival_s": {},
                "subcritical_arrival_rule": {}, "savage_collisional_interval_s": {},
                "paper": {"subcritical_after_arrival_s": PAPER_SUBCRITICAL,

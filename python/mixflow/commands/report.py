@@ -1,4 +1,4 @@
-"""Report of the Table 1 scenes run by scripts/suite.py (docs/suite.md).
+"""Report of the Table 1 scenes run by mixflow suite (docs/suite.md).
 
 usage: report.py [--work runs/reference[,runs/quick,...]] [--out results/li_zhao_2018]
                  [--bulk-work runs/bulk]
@@ -535,7 +535,7 @@ def table(sc, law):
 def write_report(out, work, sc, F, rows, law, command, bulk_lines=()):
     fin = [n for n in suite.TABLE1 if sc[n].done]
     lines = ["# Li & Zhao (2018) scenes: the paper says / we get", "",
-             f"Made by `{command}` from `{work}` (scripts/suite.py runs, docs/suite.md). "
+             f"Made by `{command}` from `{work}` (mixflow suite runs, docs/suite.md). "
              f"{len(fin)} of {len(suite.TABLE1)} scenes finished.", "",
              "| scene | status | tier | content | simulated to (s) |", "|---|---|---|---|---|"]
     for n in suite.TABLE1:
@@ -636,7 +636,7 @@ def bulk_section(rows, bulk_work):
         return []
     lines = ["## The bulk model beside CFD-DEM", "",
              f"The quasi two-phase bulk model (docs/bulk_model.md) on the same cases, from `{bulk_work}` "
-             "(`python3 scripts/suite.py --tier bulk --scenes W+P,HB+P,B+P`; its calibration stage and "
+             "(`mixflow suite --tier bulk --scenes W+P,HB+P,B+P`; its calibration stage and "
              "errors: results/bulk_model/). The bulk model has one mixture phase: its front is the "
              "mixture's.", "",
              "| scene | quantity | paper | CFD-DEM | tier | bulk model | tier |", "|---|---|---|---|---|---|---|"]
@@ -723,7 +723,7 @@ def main(argv=None):
     rows = table(sc, law)
     bulk = {n: Scene(absolute(args.bulk_work), n) for n in MIXTURES}
     brows = bulk_rows(sc, bulk)
-    command = (f"python3 scripts/report.py --work {args.work} --out {args.out}"
+    command = (f"mixflow report --work {args.work} --out {args.out}"
                + (f" --bulk-work {args.bulk_work}" if brows else ""))
     write_report(out, work, sc, F, rows, law, command, bulk_section(brows, args.bulk_work))
     summary = {"command": command, "work": work,

@@ -1,6 +1,6 @@
 """Serial against parallel mixture runs: the collapse's own sensitivity or a parallel defect?
 
-usage: python3 scripts/reproducibility.py [--scenes W+P,HB+P] [--ranks 2]
+usage: mixflow reproducibility [--scenes W+P,HB+P] [--ranks 2]
                                           [--work runs/reproducibility] [--out results/reproducibility]
 
 Each scene is cases/W+P-quick (813 grains, 2-D fluid, 1.5 s) with that scene's liquid block
@@ -53,11 +53,11 @@ def make_case(work, scene, label, density_factor=1.0, dem=None):
     if density_factor != 1.0:
         rho = float(foamdict.parse_dict(text)["liquid"]["density"])
         text, _ = foamdict.edit_dict(text, {"liquid": {"density": repr(rho * density_factor)}},
-                                  note="round-off perturbation (scripts/reproducibility.py)")
+                                  note="round-off perturbation (mixflow reproducibility)")
     open(sp, "w").write(text)
     if dem:
         foamdict.edit_file(os.path.join(d, "system", "demDict"), dem,
-                           note="scripts/reproducibility.py")
+                           note="mixflow reproducibility")
     return d
 
 
@@ -101,7 +101,7 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "reproducibility"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "reproducibility"))
     a = ap.parse_args()
-    summary = {"command": "python3 scripts/reproducibility.py " + " ".join(sys.argv[1:]),
+    summary = {"command": "mixflow reproducibility " + " ".join(sys.argv[1:]),
                "perturbation": f"liquid density x (1 + {PERTURBATION:g})", "ranks": a.ranks,
                "scenes": {}}
     rows = []

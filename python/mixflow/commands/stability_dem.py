@@ -13,7 +13,7 @@ on three small set-ups, for every youngModulusFactor f and step fraction dt / T_
           time at the pour's impact speed sqrt(2 g h_top)
 Writes a CSV (one row per set-up, f, fraction) and prints it.
 
-  /usr/bin/python3 scripts/stability_dem.py --work /tmp/stab-dem --csv results/stability/dem_step.csv
+  mixflow stability-dem --work /tmp/stab-dem --csv results/stability/dem_step.csv
 """
 import argparse
 import csv

@@ -1,7 +1,7 @@
 """The coupled exchange interval T against the drag's relaxation number s = beta T / m.
 
 A lone glass grain (d 0.5 mm, rho_p 2500) settles in a closed box of liquid (rho_f 1000, viscosity
---mu), the set-up of tests/coupling/run_settling.py (its case writer, tests/coupling/coupledcase.py:
+--mu), the set-up of tests/coupling/run_settling.py (its case writer, mixflow/coupledcase.py:
 cubic cells of 5 d, 8 x H x 8 cells, DiFeliceDrag + buoyancy + viscousForce, divided void fraction).
 For every viscosity, drag integration and s, the exchange interval is T = s u_t / ((1 - rho_f /
 rho_p) g) (beta at the terminal velocity: (m - m_f) g = beta u_t), exchangeEvery 20 DEM steps, and
@@ -15,7 +15,7 @@ when the run stopped, lost the grain or the speed passed 10 u_t.
 Integrations: implicit, held (dragRelaxationLimit 0: the drag held over T unlimited) and
 held_limited (the default dragRelaxationLimit 0.5). One CSV row per run.
 
-  /usr/bin/python3 scripts/stability_drag.py --bin /work/main/build/bin --work /tmp/stab-drag \
+  mixflow stability-drag --bin /work/main/build/bin --work /tmp/stab-drag \
       --csv results/stability/drag_interval.csv
 """
 import argparse

@@ -8,7 +8,7 @@ elastic contact's energy error |e^2 - 1| within --energy, and for the settling t
 dt / T_R with no grain lost and the first with grains lost.
 Drag boundaries, per viscosity and integration: see drag().
 
-  /usr/bin/python3 scripts/stability_plots.py --dir results/stability
+  mixflow stability-plots --dir results/stability
 """
 import argparse
 import csv
@@ -24,11 +24,11 @@ import matplotlib.pyplot as plt
 
 
 COMMANDS = [
-    "/usr/bin/python3 scripts/stability_dem.py --work /work/runs-stab/dem "
+    "mixflow stability-dem --work /work/runs-stab/dem "
     "--csv results/stability/dem_step.csv --settle-time 0.6",
-    "/usr/bin/python3 scripts/stability_drag.py --bin build/bin --work /work/runs-stab/drag "
+    "mixflow stability-drag --bin build/bin --work /work/runs-stab/drag "
     "--csv results/stability/drag_interval.csv --mu 1e-3,10,1e4 --s 0.3,1,1.8,2.2,5,100",
-    "/usr/bin/python3 scripts/stability_plots.py --dir results/stability",
+    "mixflow stability-plots --dir results/stability",
 ]
 
 

@@ -159,7 +159,7 @@ def tier_edits(case_dir, tier, scene):
         if (not os.path.isfile(path) and fkey in CREATED_BY_SET and tier.sets.get(fkey)
                 and content == "mixture"):
             text = (f"FoamFile {{ version 2.0; format ascii; class dictionary; object {fkey}; }}\n"
-                    "// Created by scripts/suite.py --set; entries not here take their defaults\n")
+                    "// Created by mixflow suite --set; entries not here take their defaults\n")
         elif not os.path.isfile(path):
             if tier.optional(fkey):
                 records += [(fkey, ".".join(p), v, "skipped") for p, v in leaves(tree)]
@@ -194,7 +194,7 @@ def tier_record(tier, scene, content, records):
             node = node.setdefault(b, {})
         node[key] = v
     return ("FoamFile { version 2.0; format ascii; class dictionary; object tier; }\n"
-            "// Written by scripts/suite.py: the fidelity tier of this run and what it set\n"
+            "// Written by mixflow suite: the fidelity tier of this run and what it set\n"
             "// (skipped: content-specific overrides naming a file or block this case has not).\n"
             f"tier        {tier.name};\n"
             f"tierFile    \"{tier.path}\";\n"

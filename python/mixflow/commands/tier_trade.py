@@ -6,14 +6,14 @@ usage: tier_trade.py [--scene HB+P] [--tiers quick=runs/quick,reference=runs/ref
                      [--paper-physics results/bench/coupled_vs_dry_paper_dem.json]
                      [--out results/li_zhao_2018]
 
-For each tier whose run of the scene finished (scripts/suite.py writes WORK/<scene>/.done): the
+For each tier whose run of the scene finished (mixflow suite writes WORK/<scene>/.done): the
 wall time, ranks and core-seconds per simulated second, and the observables of the report at
 the --times (fronts, the grains' released potential energy and kinetic energy per metre of
 width, the liquid's E_fc, the back-wall height / H, the subcritical time). Then how far each
 observable moves from each tier to the next one listed (list them from cheapest to dearest). A
 short window (cases/tiers/paper-window: the paper's stiffness and steps, 0.3 s) has rows up to
 its end only. The full paper tier cannot run here (26 core-hours per mixture): its row is the
-measured cost per simulated second and the extrapolated core-hours (scripts/suite.py --tier
+measured cost per simulated second and the extrapolated core-hours (mixflow suite --tier
 paper), and, if given, the bench run with the
 paper's modulus, DEM step and exchange interval on the quick bench geometry
 (bench/coupled_vs_dry.py --young-modulus-factor 1 --dem-step 5e-7 --exchange-every 100).
@@ -158,7 +158,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     times = [float(t) for t in a.times.split(",")]
     res = {"scene": a.scene, "times_s": times, "tiers": {}, "changes": {},
-           "command": " ".join(["python3 scripts/tier_trade.py"] + (argv or sys.argv[1:]))}
+           "command": " ".join(["mixflow tier-trade"] + (argv or sys.argv[1:]))}
     for spec in a.tiers.split(","):
         name, work = spec.split("=")
         res["tiers"][name] = tier_row(work, a.scene, times)

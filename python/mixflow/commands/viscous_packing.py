@@ -2,7 +2,7 @@
 2011, Phys. Fluids 23, 073301): results/yield_stress/viscous_packing.csv and the
 "viscous_packing" entry of summary.json.
 
-usage: python3 scripts/viscous_packing.py [--viscosity 4] [--loose 0.56:0.7]
+usage: mixflow viscous-packing [--viscosity 4] [--loose 0.56:0.7]
                                           [--work runs/yield_stress] [--out results/yield_stress]
 
 W+P at the reference tier with the liquid made Newtonian at --viscosity (Pa s; 4 is the paper's
@@ -11,7 +11,7 @@ mu) = 0.22: the viscous regime of Courrech du Pont et al. 2003, as Rondon's), se
 case's settle.friction 0.1) and loose (--loose FRACTION:SETTLE_FRICTION: the target fraction sets
 the grain count, the settling friction the packing). For each: the runout (granular front - L)
 at the end, the grains' potential energy released by 0.5, 1, 2 and 3 s, and the basal pore
-pressure under the initial column against hydrostatic per 0.1 s window (scripts/mixture_lambdas.py,
+pressure under the initial column against hydrostatic per 0.1 s window (mixflow mixture-lambdas,
 which needs /usr/bin/python3 with numpy and h5py).
 
 What Rondon et al. measured and this checks: the dense column collapses more slowly and runs
@@ -66,7 +66,7 @@ def main():
            "reference": {"source": "Rondon, Pouliquen & Aussillous 2011 (Phys. Fluids 23, 073301)",
                          "runout_ratio_loose_over_dense": RUNOUT_RATIO,
                          "basal_excess_sign": {"dense": "negative", "loose": "positive"}},
-           "command": "python3 scripts/viscous_packing.py " + " ".join(sys.argv[1:]),
+           "command": "mixflow viscous-packing " + " ".join(sys.argv[1:]),
            "runs": {}}
     for name, sets in packings.items():
         work = os.path.join(os.path.abspath(a.work), f"viscous-{a.viscosity}-{name}")

@@ -1,7 +1,7 @@
 """results/yield_stress/: the drag-viscosity closures against the single-grain references, and
 the quick HB&P and B&P under the verified default and under the paper-faithful variants.
 
-usage: python3 scripts/yield_stress_results.py [--work runs/yield_stress] [--out results/yield_stress]
+usage: mixflow yield-stress-results [--work runs/yield_stress] [--out results/yield_stress]
                                                [--skip-grains] [--skip-mixtures]
                                                [--skip-beds | --only-beds]
 
@@ -359,7 +359,7 @@ def main():
     summary["default_rule"] = ("dragViscosity auto: slip for a yield-stress or power-law liquid "
                                "(passes the single-grain checks), resolved for a Newtonian one "
                                "(identical there)")
-    summary["command"] = "python3 scripts/yield_stress_results.py"
+    summary["command"] = "mixflow yield-stress-results"
     if a.only_beds:
         a.skip_grains = a.skip_mixtures = True
     if not a.skip_grains:
