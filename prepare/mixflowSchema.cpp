@@ -161,22 +161,12 @@ std::string jsonRange(const mixflow::Range& r) {
 }
 
 const char* typeName(mixflow::Param::Type type) {
-  switch (type) {
-    case mixflow::Param::Type::Scalar:
-      return "scalar";
-    case mixflow::Param::Type::Integer:
-      return "integer";
-    case mixflow::Param::Type::Word:
-      return "word";
-    case mixflow::Param::Type::Switch:
-      return "switch";
-    case mixflow::Param::Type::Text:
-      return "text";
-    case mixflow::Param::Type::Dict:
-      return "dict";
-    case mixflow::Param::Type::Any:
-      return "any";
-  }
+  using T = mixflow::Param::Type;
+  static const std::pair<T, const char*> kNames[] = {
+      {T::Scalar, "scalar"}, {T::Integer, "integer"}, {T::Word, "word"}, {T::Switch, "switch"},
+      {T::Text, "text"},     {T::Dict, "dict"},       {T::Any, "any"}};
+  for (const auto& [t, name] : kNames)
+    if (t == type) return name;
   return "any";
 }
 
