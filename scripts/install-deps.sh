@@ -73,15 +73,16 @@ if [ ! -f "$STAMP" ]; then
 fi
 # The Python package: an editable install into Debian's python3 (the one with numpy and h5py), so
 # that `import mixflow` finds this checkout's python/mixflow and `mixflow` is a command on PATH.
-# Nothing is downloaded (--no-deps, --no-build-isolation: setuptools and wheel are Debian's); Debian
-# marks its python3 as externally managed (PEP 668), hence --break-system-packages. Reinstalled
-# only when the installed package is another checkout's, of another version, or has no command.
+# Nothing is downloaded (--no-index, --no-deps, --no-build-isolation: setuptools and wheel are
+# Debian's); Debian marks its python3 as externally managed (PEP 668), hence
+# --break-system-packages (pip writes to /usr/local only). Reinstalled only when the installed
+# package is another checkout's, of another version, or has no command.
 PY=/usr/bin/python3
 want="$ROOT/python/mixflow/__init__.py $(sed -n 's/^version = "\(.*\)"$/\1/p' "$ROOT/python/pyproject.toml")"
 have=$(cd / && "$PY" -I -c 'import importlib.metadata as m, mixflow; print(mixflow.__file__, m.version("mixflow"))' 2>/dev/null || true)
 if [ "$have" != "$want" ] || [ ! -x /usr/local/bin/mixflow ]; then
   echo "[install-deps] installing the Python package from $ROOT/python (editable)"
-  $SUDO "$PY" -m pip install --quiet --root-user-action=ignore --break-system-packages \
-    --no-build-isolation --no-deps --editable "$ROOT/python"
+  $SUDO "$PY" -m pip install --quiet --no-index --disable-pip-version-check --root-user-action=ignore \
+    --break-system-packages --no-build-isolation --no-deps --editable "$ROOT/python"
 fi
 echo "[install-deps] ok (OpenFOAM source at $FOAM_SRC; Python package mixflow from $ROOT/python)"
