@@ -7,7 +7,7 @@ usage: bench/bulk_vs_cfddem.py [--scenes HB+P,P] [--work /tmp/mixflow-bench-bulk
 For each scene: the CFD-DEM run at the tier `reference` (settling, then mixflowCoupled; for the dry
 scene P the DEM alone, mixflowDem), then the bulk model (mixflowBulkFoam; P as its bulk twin
 cases/P-bulk) at the tier `bulk`, once per --bulk-cell-sizes entry (`tier`: the
-tier's own cell size; a number: `--set cfdDict.cellSize=` it), each through scripts/suite.py into
+tier's own cell size; a number: `--set cfdDict.cellSize=` it), each through mixflow suite into
 WORK/<label>, one after the other. Measured per run: the solver's CPU time (its log's last
 ExecutionTime; mixflowDem: its collapse phase's CPU), the settling's wall time (CFD-DEM only), the suite's wall time, the simulated end
 time and the granular front at the end. Ratios: CFD-DEM solver CPU / bulk solver CPU, and the
@@ -25,8 +25,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import foamcase, outputs  # noqa: E402
+from mixflow.cli import command  # noqa: E402
 
 
 def settle_wall(log):
@@ -60,7 +60,7 @@ def end_state(case):
 
 
 def run(label, scene, tier, work, sets):
-    cmd = [sys.executable, os.path.join(ROOT, "scripts", "suite.py"), "--tier", tier, "--scenes",
+    cmd = command("suite") + ["--tier", tier, "--scenes",
            scene, "--work", os.path.join(work, label)]
     for s in sets:
         cmd += ["--set", s]
@@ -93,7 +93,7 @@ def main():
     ap.add_argument("--bulk-cell-sizes", default="tier,0.075")
     ap.add_argument("--json")
     a = ap.parse_args()
-    out = {"command": "python3 bench/bulk_vs_cfddem.py " + " ".join(sys.argv[1:]), "scenes": {}}
+    out = {"command": "mixflow bench bulk_vs_cfddem " + " ".join(sys.argv[1:]), "scenes": {}}
     for scene in a.scenes.split(","):
         ref = run(f"{scene}-cfddem", scene, "reference", a.work, [])
         bulks = []

@@ -35,8 +35,7 @@ import tempfile
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-from dem_driver_vs_liggghts import timed as _timed  # noqa: E402
+from mixflow.timing import timed as _timed  # noqa: E402
 from mixflow import foamdict, outputs  # noqa: E402
 
 
@@ -289,7 +288,7 @@ def main():
         "settle_cpu_s": c_settle, "dry_collapse_cpu_s": c_dry,
         "dry_collapse_cpu_s_by_difference": c_dry_diff, "target_ratio": 1.3,
         "runs": runs,
-        "command": " ".join(["python3 bench/coupled_vs_dry.py"] + sys.argv[1:]),
+        "command": " ".join(["mixflow bench coupled_vs_dry"] + sys.argv[1:]),
     }
     print(json.dumps(res, indent=2))
     if a.json:

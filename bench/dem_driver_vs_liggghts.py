@@ -12,17 +12,14 @@ import argparse
 import json
 import os
 import re
-import resource
 import shutil
-import subprocess
 import sys
 import tempfile
-import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 sys.dont_write_bytecode = True
 from mixflow import outputs  # noqa: E402
+from mixflow.timing import timed  # noqa: E402
 
 
 def mpi_prefix(ranks):
@@ -30,20 +27,6 @@ def mpi_prefix(ranks):
         return []
     extra = ["--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
     return ["mpirun"] + extra + ["-np", str(ranks)]
-
-
-def timed(cmd, cwd, with_output=False):
-    """Wall seconds and CPU seconds (user + sys of the command and all its descendants, e.g. MPI ranks).
-    CPU time is the fair measure on a shared machine: wall time also counts waiting for the core."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    res = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if res.returncode != 0:
-        sys.exit(f"failed ({res.returncode}): {' '.join(cmd)}\n{res.stdout[-2000:]}\n{res.stderr[-2000:]}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return (wall, cpu, res.stdout) if with_output else (wall, cpu)
 
 
 def particle_steps(script, natoms):

@@ -54,7 +54,7 @@ def main():
             k: (v - finest["observables"][k]) / abs(finest["observables"][k])
             for k, v in r["observables"].items() if finest["observables"][k]}
     out = {"scene": "bench/coupled_vs_dry.py's W&P scene at 70/700 GPa, settled from 1e-2",
-           "rows": rows, "command": f"python3 bench/dem_step_convergence.py --steps {a.steps} --json {a.json}"}
+           "rows": rows, "command": f"mixflow bench dem_step_convergence --steps {a.steps} --json {a.json}"}
     json.dump(out, open(a.json, "w"), indent=1)
     for r in rows:
         ch = r["change_against_finest"]

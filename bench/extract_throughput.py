@@ -30,7 +30,6 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 from mixflow import outputs  # noqa: E402
 
 ap = argparse.ArgumentParser()

@@ -13,7 +13,6 @@ import sys
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 from mixflow import foamcase as fc  # noqa: E402
 
 
@@ -45,7 +44,7 @@ def main():
             f"{r['time_s']:g} s: {r['max_speed_m_s']:.2f} (liquid {r['max_liquid_speed_m_s']:.3f})"
             for r in rows))
     if a.json:
-        res["command"] = " ".join(["python3 bench/field_speeds.py"] + sys.argv[1:])
+        res["command"] = " ".join(["mixflow bench field_speeds"] + sys.argv[1:])
         with open(a.json, "w") as f:
             json.dump(res, f, indent=2)
 

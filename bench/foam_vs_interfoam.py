@@ -20,10 +20,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_dambreak_vs_interfoam, a test driver
 from mixflow import foamcase as fc  # noqa: E402  (shared case helpers of the CFD tests)
-from run_dambreak_vs_interfoam import prepare  # noqa: E402
 
 TUTORIAL = "tutorials/multiphase/interFoam/laminar/damBreak/damBreak"
 
@@ -57,7 +54,7 @@ def main():
         runs = []
         for k in range(a.repeat):
             case = os.path.join(work, f"{name}{k}")
-            prepare(os.path.join(a.foam_src, TUTORIAL), case, a.end_time, "setFields", "blockMesh")
+            fc.prepare_dam_break(os.path.join(a.foam_src, TUTORIAL), case, a.end_time, "setFields", "blockMesh")
             runs.append(run_timed(exe, case))
         results[name] = runs
     cells = 2268

@@ -17,7 +17,7 @@ energy (a run whose kinetic energy passes the column's initial potential energy,
 that is still running after --timeout seconds with its step cut by the Courant limit, is
 'diverged').
 
-Usage: python3 bench/piso_correctors.py [--mu 1,5,25,100,250,1000] [--correctors 2,3,4,10,20]
+Usage: mixflow bench piso_correctors [--mu 1,5,25,100,250,1000] [--correctors 2,3,4,10,20]
                                         [--json OUT] [--csv OUT] [--work DIR] [--bin build/bin]
 """
 
@@ -33,9 +33,7 @@ import time
 
 sys.dont_write_bytecode = True
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "cfd"))  # run_liquid_cases, a test driver
-import run_liquid_cases as liquid_cases  # noqa: E402  (write_case: the liquid tests' case writer)
+from mixflow import liquidcase  # noqa: E402  (write_case: the liquid tests' case writer)
 from mixflow import outputs  # noqa: E402
 
 RHO, DX, DT = 1000.0, 0.005, 1e-3
@@ -48,7 +46,7 @@ def write_case(case, mu, ncorr, end):
              "channel { length 0.3; height 0.15; }\n"
              f"liquid {{ rheology Newtonian; density {RHO}; viscosity {mu}; surfaceTension 0; }}\n")
     cfd = f"dimensions 2;\ncellSize {DX};\ndeltaT {DT};\nmaxDeltaT {DT};\nnCorrectors {ncorr};\n"
-    liquid_cases.write_case(case, scene, cfd, end, end)
+    liquidcase.write_case(case, scene, cfd, end, end)
 
 
 def run(cmd, case, log, timeout=None):
@@ -163,7 +161,7 @@ def main():
             print(f"{mu:>10g} {row['viscous_number_D']:>7.3g} {n:>5d} {r['cpu_s']:>7.2f} "
                   f"{fmt(df, '10.2e')} {fmt(dk, '11.2e')}  {state}", flush=True)
         print(f"  ({time.time() - t_start:.0f} s wall so far)", flush=True)
-    cmd = "python3 bench/piso_correctors.py " + " ".join(sys.argv[1:])
+    cmd = "mixflow bench piso_correctors " + " ".join(sys.argv[1:])
     out = {"command": cmd, "case": "2-D Newtonian column 0.1 x 0.1 m, channel 0.3 x 0.15 m, "
            f"cells {DX} m, dt {DT} s fixed, end {a.end} s", "runs": rows}
     if a.json:

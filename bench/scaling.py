@@ -14,7 +14,7 @@ The efficiency at 2 ranks is T1 / (2 T2) of the wall time of the whole ./Allrun,
 particles weighted by --weight, demDict balanceWeight, dem/SlabBalance.h; in a mixture the fluid
 keeps its slabs and the exchange routes each particle to its cells' ranks; demDict's default); 0:
 LIGGGHTS' own grid and equal slabs. --tier T
-runs the scene as scripts/suite.py --tier T would (none: the case as it is), --end S sets its
+runs the scene as mixflow suite --tier T would (none: the case as it is), --end S sets its
 controlDict endTime.
 
 --repeat 0 runs each rank count of --ranks above 1 once, for the load figures alone.
@@ -34,10 +34,8 @@ import time
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from mixflow import foamcase, foamdict, outputs  # noqa: E402
-import suite  # noqa: E402
+from mixflow.commands import suite  # noqa: E402
 
 SCENE_NAMES = {"P-quick": "P", "W+P-quick": "W&P", "P": "P", "W+P": "W&P"}
 
@@ -102,7 +100,7 @@ def main():
     ap.add_argument("--balance", type=float, default=0.05)
     ap.add_argument("--weight", default="pairs", choices=("particles", "pairs", "contacts"),
                     help="demDict balanceWeight: what a particle weighs in the re-balance")
-    ap.add_argument("--tier", default="reference", help="a tier of scripts/suite.py applied to "
+    ap.add_argument("--tier", default="reference", help="a tier of mixflow suite applied to "
                     "the scene's copy; none: the case as it is")
     ap.add_argument("--end", type=float, default=1.0, help="controlDict endTime (s) of every run; "
                     "0: the case's")
@@ -115,7 +113,7 @@ def main():
            "efficiency_2_ranks": {}, "wall_s": {}, "per_run": {},
            "balance_interval_s": args.balance, "balance_weight": args.weight, "tier": args.tier,
            "end_time_s": args.end,
-           "command": "python3 bench/scaling.py " + " ".join(sys.argv[1:])}
+           "command": "mixflow bench scaling " + " ".join(sys.argv[1:])}
     for scene in args.scenes.split(","):
         name = SCENE_NAMES.get(scene, scene)
         walls = {1: [], 2: []}

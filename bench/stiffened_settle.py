@@ -24,9 +24,7 @@ import sys
 sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "python"))
-sys.path.insert(0, HERE)
-from dem_driver_vs_liggghts import timed  # noqa: E402
+from mixflow.timing import timed  # noqa: E402
 from mixflow import contacts, foamdict  # noqa: E402
 
 COMPARED = ("height_m", "sample_solid_fraction", "bulk_solid_fraction", "coordination_pairs",
@@ -94,6 +92,7 @@ def main():
                     help="take a run's figures from its WORK directory when it ran the same inputs")
     a = ap.parse_args()
     exe = os.path.join(os.path.abspath(a.bin), "mixflowDem")
+    os.environ["MIXFLOW_BUILD"] = os.path.dirname(os.path.abspath(a.bin))  # its mixflowSchema: defaults
     stiffen = {"from": a.stiffen_from, "steps": a.steps, "time": a.step_time}
     seeds = [int(s) for s in a.seeds.split(",")]
     out = {"command": "bench/stiffened_settle.py " + " ".join(sys.argv[1:]),

@@ -5,6 +5,13 @@
 //   mixflowSchema -check DOC    exit 1 when a block <!-- BEGIN generated: NAME --> ...
 //                               <!-- END generated --> of DOC differs from the declarations
 //   mixflowSchema -update DOC   rewrites those blocks (the text around them is kept)
+//   mixflowSchema -json         every declared entry of every dictionary file, with its type,
+//                               default, range or words, unit and meaning, as one JSON object
+//                               {file: {dotted entry: {...}}} (the Python package reads it:
+//                               python/mixflow/schema.py)
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -112,8 +119,101 @@ std::vector<std::string> unlisted() {
   return out;
 }
 
+// JSON text of a string: quotes, backslashes and control characters escaped.
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// JSON number of v: the fewest significant digits that read back as v; null when not finite.
+std::string jsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string jsonWords(const std::vector<std::string>& words) {
+  std::string out = "[";
+  for (size_t i = 0; i < words.size(); ++i) out += (i ? ", " : "") + jsonString(words[i]);
+  return out + "]";
+}
+
+std::string jsonRange(const mixflow::Range& r) {
+  return "{\"lo\": " + jsonNumber(r.lo) + ", \"hi\": " + jsonNumber(r.hi) +
+         ", \"loOpen\": " + (r.loOpen ? "true" : "false") +
+         ", \"hiOpen\": " + (r.hiOpen ? "true" : "false") + "}";
+}
+
+const char* typeName(mixflow::Param::Type type) {
+  using T = mixflow::Param::Type;
+  static const std::pair<T, const char*> kNames[] = {
+      {T::Scalar, "scalar"}, {T::Integer, "integer"}, {T::Word, "word"}, {T::Switch, "switch"},
+      {T::Text, "text"},     {T::Dict, "dict"},       {T::Any, "any"}};
+  for (const auto& [t, name] : kNames)
+    if (t == type) return name;
+  return "any";
+}
+
+// One declared entry: type, required, auto, default (null where there is none: a required
+// entry, a sub-dictionary, an entry another reader reads, a default taken from elsewhere, which
+// defaultNote names), range (scalar, integer), words (word; empty: any word), the plausible
+// range of the material it names (plausible, plausibleFor) where it declares one.
+std::string jsonParam(const mixflow::Param& p) {
+  using T = mixflow::Param::Type;
+  std::string def = "null";
+  if (!p.required && !p.autoDefault && p.defaultNote.empty()) {
+    if (p.type == T::Scalar || p.type == T::Integer) def = jsonNumber(p.number);
+    if (p.type == T::Switch) def = p.number != 0 ? "true" : "false";
+    if (p.type == T::Word || p.type == T::Text) def = jsonString(p.word);
+  }
+  std::string out = std::string("{\"type\": \"") + typeName(p.type) + "\"" +
+                    ", \"required\": " + (p.required ? "true" : "false") +
+                    ", \"auto\": " + (p.autoDefault ? "true" : "false") + ", \"default\": " + def;
+  if (p.type == T::Scalar || p.type == T::Integer) out += ", \"range\": " + jsonRange(p.range);
+  if (p.plausibleRange)
+    out += ", \"plausible\": " + jsonRange(*p.plausibleRange) +
+           ", \"plausibleFor\": " + jsonString(p.plausibleFor);
+  if (p.type == T::Word) out += ", \"words\": " + jsonWords(p.words);
+  if (!p.onlyFor.empty()) out += ", \"onlyFor\": " + jsonWords(p.onlyFor);
+  if (!p.defaultNote.empty()) out += ", \"defaultNote\": " + jsonString(p.defaultNote);
+  return out + ", \"unit\": " + jsonString(p.unit) + ", \"meaning\": " + jsonString(p.meaning) +
+         "}";
+}
+
+// Every declared dictionary file once (sceneProperties has two tables), in the tables' order.
+std::string json() {
+  std::string out = "{";
+  std::set<const Schema*> done;
+  for (const auto& t : tables()) {
+    if (!done.insert(&t.schema).second) continue;
+    out += std::string(done.size() > 1 ? ",\n " : "\n ") + jsonString(t.schema.file()) + ": {";
+    const auto& params = t.schema.params();
+    for (size_t i = 0; i < params.size(); ++i)
+      out += std::string(i ? ",\n  " : "\n  ") + jsonString(params[i].path) + ": " +
+             jsonParam(params[i]);
+    out += "}";
+  }
+  return out + "\n}\n";
+}
+
 int usage() {
-  std::cerr << "usage: mixflowSchema NAME | -check DOC | -update DOC\n  NAME:";
+  std::cerr << "usage: mixflowSchema NAME | -check DOC | -update DOC | -json\n  NAME:";
   for (const auto& [name, table] : namedTables()) std::cerr << " " << name;
   std::cerr << "\n";
   return 2;
@@ -123,6 +223,10 @@ int usage() {
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
+    if (args.size() == 1 && args[0] == "-json") {
+      std::cout << json();
+      return 0;
+    }
     if (args.size() == 1) {
       for (const auto& [name, table] : namedTables())
         if (name == args[0]) {

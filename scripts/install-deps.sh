@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs everything mixflow needs from Debian 12 packages, and OpenFOAM's headers from Debian's own
-# source package (Debian ships OpenFOAM's libraries but not its headers; see cfd/README.md).
+# Installs everything mixflow needs from Debian 12 packages, OpenFOAM's headers from Debian's own
+# source package (Debian ships OpenFOAM's libraries but not its headers; see cfd/README.md), and
+# this checkout's Python package python/mixflow with its `mixflow` command (python/README.md).
 # Idempotent: a second run checks and returns in about a second.
 set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
 
 PKGS=(build-essential cmake pkg-config git
       openfoam libopenfoam openfoam-examples
@@ -10,6 +12,7 @@ PKGS=(build-essential cmake pkg-config git
       libopenmpi-dev openmpi-bin
       libhdf5-dev hdf5-tools
       python3 python3-numpy python3-h5py python3-matplotlib
+      python3-pip python3-setuptools python3-wheel python3-pyflakes
       libgtest-dev bzip2 dpkg-dev)
 
 SUDO=""
@@ -68,4 +71,18 @@ if [ ! -f "$STAMP" ]; then
   done
   $SUDO touch "$STAMP"
 fi
-echo "[install-deps] ok (OpenFOAM source at $FOAM_SRC)"
+# The Python package: an editable install into Debian's python3 (the one with numpy and h5py), so
+# that `import mixflow` finds this checkout's python/mixflow and `mixflow` is a command on PATH.
+# Nothing is downloaded (--no-index, --no-deps, --no-build-isolation: setuptools and wheel are
+# Debian's); Debian marks its python3 as externally managed (PEP 668), hence
+# --break-system-packages (pip writes to /usr/local only). Reinstalled only when the installed
+# package is another checkout's, of another version, or has no command.
+PY=/usr/bin/python3
+want="$ROOT/python/mixflow/__init__.py $(sed -n 's/^version = "\(.*\)"$/\1/p' "$ROOT/python/pyproject.toml")"
+have=$(cd / && "$PY" -I -c 'import importlib.metadata as m, mixflow; print(mixflow.__file__, m.version("mixflow"))' 2>/dev/null || true)
+if [ "$have" != "$want" ] || [ ! -x /usr/local/bin/mixflow ]; then
+  echo "[install-deps] installing the Python package from $ROOT/python (editable)"
+  $SUDO "$PY" -m pip install --quiet --no-index --disable-pip-version-check --root-user-action=ignore \
+    --break-system-packages --no-build-isolation --no-deps --editable "$ROOT/python"
+fi
+echo "[install-deps] ok (OpenFOAM source at $FOAM_SRC; Python package mixflow from $ROOT/python)"

@@ -9,7 +9,7 @@
 #   HB-I, B-I    cells H/20 and H/10 in their own channels, 5 s and 30 s
 #   cap-*        the regularisation: HB (as above) and the yield-slump test column with viscosity
 #                caps 1e2, 1e3, 1e4 (default), 1e5 Pa s
-# then scripts/liquid_results.py makes the plots, CSVs and summary.json.
+# then mixflow liquid-results makes the plots, CSVs and summary.json.
 # With side-walls only this runs: case W as committed (3-D, 0.03 m cells, no-slip walls at
 # z = 0 and W; 156 000 cells, about 45 min serial) and the same in 2-D, both to 2.2 s, and
 # liquid_results.py --side-walls compares them (side_walls.csv/.png/.json). Finished runs (log with
@@ -56,7 +56,7 @@ if [ "${2:-}" = side-walls ]; then
       run "$r"
     fi
   done
-  /usr/bin/python3 "$root/scripts/liquid_results.py" --side-walls "$work" \
+  /usr/bin/python3 -m mixflow liquid-results --side-walls "$work" \
     "$root/results/pure_liquids" --command "scripts/liquid_results.sh $ranks side-walls"
   exit 0
 fi
@@ -70,7 +70,7 @@ if ! done_run calibration; then
   set_entry "$work/calibration/system/controlDict" endTime 1.6
   run calibration
 fi
-lc=$(/usr/bin/python3 "$root/scripts/liquid_results.py" --calibrate "$work/calibration" 1.25)
+lc=$(/usr/bin/python3 -m mixflow liquid-results --calibrate "$work/calibration" 1.25)
 echo "calibrated channel length: $lc m"
 
 # 2. W, HB, B in the calibrated channel.
@@ -129,5 +129,5 @@ EOF
   fi
 done
 
-/usr/bin/python3 "$root/scripts/liquid_results.py" --make "$work" "$root/results/pure_liquids" \
+/usr/bin/python3 -m mixflow liquid-results --make "$work" "$root/results/pure_liquids" \
   --channel-length "$lc" --command "scripts/liquid_results.sh $ranks"

@@ -17,5 +17,5 @@ for c in P-I-I P-I-II P-I-III P-I-IV P-I-V; do
   fi
   echo "$c done"
 done
-/usr/bin/python3 "$root/scripts/runout_fit.py" "$work" "$root/results/runout_scaling" \
+/usr/bin/python3 -m mixflow runout-fit "$work" "$root/results/runout_scaling" \
   "scripts/runout_scaling.sh $ranks"

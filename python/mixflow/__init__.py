@@ -1,8 +1,5 @@
-"""mixflow's Python package: the code the scripts, benchmarks and tests share (python/README.md).
-
-An entry point puts this package's folder on sys.path with one line, e.g. from scripts/:
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-"""
+"""mixflow's Python package: the code the `mixflow` command, the benchmarks and the tests share
+(python/README.md). scripts/install-deps.sh installs it (editable) into Debian's python3."""
 
 import os
 

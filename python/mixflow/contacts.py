@@ -93,17 +93,18 @@ def settled_stats(case):
     """The settled sample of a dry case run through its first snapshot (mixflowDem with a short
     endTime): summary.json's settled block and sample_contacts() of VTK/particles/particles_0.bin
     (the gate is open but no step has run). Moduli and walls from the case's sceneProperties
-    (paper material where it sets none)."""
+    (the declared defaults where it sets none: mixflow.schema)."""
     import json
     import os
-    from mixflow import foamdict, outputs
-    sp = foamdict.read_dict(os.path.join(case, "constant", "sceneProperties"))
-    part, sample = sp.get("particles", {}), sp["sample"]
-    young = float(part.get("youngModulus", 70e9))
-    wall_young = float(part.get("wallYoungModulus", 700e9))
-    poisson = float(part.get("poissonRatio", 0.3))
+    from mixflow import foamdict, outputs, schema
+    rel = "constant/sceneProperties"
+    sp = foamdict.read_dict(os.path.join(case, rel))
+    sample = sp["sample"]
+    young = float(schema.value(sp, rel, "particles.youngModulus"))
+    wall_young = float(schema.value(sp, rel, "particles.wallYoungModulus"))
+    poisson = float(schema.value(sp, rel, "particles.poissonRatio"))
     length, width = float(sample["length"]), float(sample["width"])
-    periodic = sp["channel"].get("sideWalls", "walls") == "periodic"
+    periodic = schema.value(sp, rel, "channel.sideWalls") == "periodic"
     walls = [(1, 0.0, 1), (0, 0.0, 1), (0, length, -1)]
     if not periodic:
         walls += [(2, 0.0, 1), (2, width, -1)]

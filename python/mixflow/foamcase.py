@@ -284,3 +284,24 @@ laplacianSchemes { default Gauss linear corrected; }
 interpolationSchemes { default linear; }
 snGradSchemes { default corrected; }
 """
+
+
+def prepare_dam_break(template, case, end_time, setfields, blockmesh):
+    """CASE: a copy of the interFoam damBreak tutorial TEMPLATE that runs to END_TIME, writes
+    only then (17 digits) and samples nothing, meshed (BLOCKMESH) and with its initial alpha
+    (SETFIELDS); tests/cfd/run_dambreak_vs_interfoam.py and bench/foam_vs_interfoam.py."""
+    copy_case(template, case)
+    ctrl = os.path.join(case, "system", "controlDict")
+    set_entry(ctrl, "endTime", end_time)
+    set_entry(ctrl, "writeInterval", end_time)
+    set_entry(ctrl, "writePrecision", 17)
+    with open(ctrl) as f:
+        text = f.read()
+    text = re.sub(r"^#sinclude.*$", "", text, flags=re.M)  # drop the sampling function object
+    with open(ctrl, "w") as f:
+        f.write(text)
+    orig = os.path.join(case, "0", "alpha.water.orig")
+    if os.path.isfile(orig):
+        os.replace(orig, os.path.join(case, "0", "alpha.water"))
+    run([blockmesh], case, "log.blockMesh")
+    run([setfields], case, "log.setFields")

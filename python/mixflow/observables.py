@@ -113,7 +113,7 @@ def granular_front(s):
 
 
 def subcritical(s):
-    """(t0, t - t0) of the Froude rule of scripts/liquid_results.py, or (t0, None)."""
+    """(t0, t - t0) of the Froude rule of mixflow liquid-results, or (t0, None)."""
     if not s.liquid:
         return None, None
     t0, ts = subcritical_after_arrival(s.liquid)

@@ -1,5 +1,5 @@
 """The dry runout law (l_inf - L)/L = lambda a^alpha: its fit and the deposit's thickness front
-(scripts/runout_fit.py, report.py, lube_small_columns.py)."""
+(mixflow runout-fit, report.py, lube_small_columns.py)."""
 
 import csv
 import math

@@ -7,15 +7,12 @@ The noise e = sigma (E - 1), E exponential: mean 0 (least squares is unbiased) b
 -0.31 sigma, with a long positive tail, as the measured ratios' (W+P-quick: p90 49 against a
 median 6.4). It does not scale with the solid velocity, so in slow bins (60 %, u_s 0.06-0.10 m/s,
 just above the flowing threshold 0.054 m/s) the ratio u_f/u_s carries -0.31 sigma / u_s."""
-import os
 import subprocess
 import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from mixflow import synthcase  # noqa: E402
+from mixflow import synthcase
 
 LU, LW, LP = 1.3, 0.8, 0.6
 SIGMA_U, SIGMA_W, SIGMA_P = 0.1, 0.02, 0.01  # m/s, m/s, m2/s2 (10 Pa of liquid pressure)

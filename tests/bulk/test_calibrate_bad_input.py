@@ -8,13 +8,11 @@ import shutil
 import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "python"))
 import drift_data as dd  # noqa: E402
+from mixflow.cli import command  # noqa: E402
 from mixflow.synthcase import checker, write  # noqa: E402
 
-CMD = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py")]
+CMD = command("calibrate")
 
 
 def main():

@@ -17,16 +17,15 @@ import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts, mixture_lambdas
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import calibrate_drifts as cd  # noqa: E402
+from mixflow.cli import command  # noqa: E402
+from mixflow.commands import calibrate_drifts as cd  # noqa: E402
 import drift_data as dd  # noqa: E402
 from mixflow import foamcase  # noqa: E402
 from mixflow.foamdict import read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
-from mixture_lambdas import load  # noqa: E402
+from mixflow.commands.mixture_lambdas import load  # noqa: E402
+
+CALIBRATE = command("calibrate")  # + [CASE, ...]: the command the test runs
 
 NX, NY, LX, LY = 40, 12, 1.0, 0.3  # 0.025 m cells over the 0.8 x 0.2 m grid and beyond it
 FLOWING = 0.1  # 0.108 m/s: drops the slow bins (u_s 0.06-0.10), leaving some bins without a value
@@ -104,7 +103,7 @@ def expected(h5, constants, windows, how):
 def calibrate(check, case, target, label, args):
     """calibrate_drifts.py CASE --target TARGET --fields ARGS; exits on failure. Returns the
     command, its stdout and the JSON written."""
-    cmd = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
+    cmd = CALIBRATE + [case,
            "--target", target, "--fields", "--flowing-factor", str(FLOWING), "--bootstrap",
            "50"] + args
     r = subprocess.run(cmd, capture_output=True, text=True)
@@ -180,8 +179,8 @@ def run_per_window(check, work, case, h5, blockmesh):
     check(d.get("fields") == "on" and d.get("timeVarying") == "off",
           f"fixed fields after a per-window calibration: timeVarying {d.get('timeVarying')} "
           "(off: the earlier windows are no longer used)")
-    r = subprocess.run(cmd[:3] + ["--target", target, "--per-window"], capture_output=True,
-                       text=True)
+    r = subprocess.run(CALIBRATE + [case, "--target", target, "--per-window"],
+                       capture_output=True, text=True)
     check(r.returncode == 2 and "--per-window: needs --fields" in r.stderr,
           f"--per-window without --fields: exit {r.returncode}; {r.stderr.strip()}")
     # --window-span 3: each window's cells from the samples of the 3 windows centred on it (2 at
@@ -196,7 +195,7 @@ def run_per_window(check, work, case, h5, blockmesh):
             check_cells(check, f"{label} {name} s (windows {pooled} s)", key,
                         os.path.join(series, name, key), want[q], lo)
     for bad in ("2", "0"):
-        r = subprocess.run(cmd[:3] + ["--target", target, "--fields", "--per-window",
+        r = subprocess.run(CALIBRATE + [case, "--target", target, "--fields", "--per-window",
                                       "--window-span", bad], capture_output=True, text=True)
         check(r.returncode == 2 and f"--window-span {bad}: allowed an odd integer >= 1" in r.stderr,
               f"--window-span {bad}: exit {r.returncode}; {r.stderr.strip()}")
@@ -257,16 +256,17 @@ def main():
     run_per_window(check, work, case, h5, blockmesh)
 
     # Refusals: --fields without --target, a target without a mesh; nothing written.
-    r = subprocess.run(cmd[:3] + ["--target", os.path.join(work, "bulk_target_clipped"), "--fields",
-                        "--field-mean", "median"], capture_output=True, text=True)
+    r = subprocess.run(CALIBRATE + [case, "--target", os.path.join(work, "bulk_target_clipped"),
+                                    "--fields", "--field-mean", "median"],
+                       capture_output=True, text=True)
     check(r.returncode == 2 and "--field-mean median" in r.stderr, f"--field-mean median: exit "
           f"{r.returncode}; {r.stderr.strip()}")
-    r = subprocess.run(cmd[:3] + ["--fields"], capture_output=True, text=True)
+    r = subprocess.run(CALIBRATE + [case, "--fields"], capture_output=True, text=True)
     check(r.returncode == 2 and "--target" in r.stderr, f"--fields without --target: exit "
           f"{r.returncode}; {r.stderr.strip()}")
     bare = os.path.join(work, "no_mesh")
     os.makedirs(os.path.join(bare, "constant"), exist_ok=True)
-    r = subprocess.run(cmd[:3] + ["--target", bare, "--fields", "--bootstrap", "50"],
+    r = subprocess.run(CALIBRATE + [case, "--target", bare, "--fields", "--bootstrap", "50"],
                        capture_output=True, text=True)
     check(r.returncode == 2 and "polyMesh" in r.stderr and "blockMesh" in r.stderr
           and not os.listdir(os.path.join(bare, "constant")),

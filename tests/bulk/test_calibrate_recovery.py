@@ -12,15 +12,12 @@ import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts, mixture_lambdas
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import calibrate_drifts as cd  # noqa: E402
+from mixflow.cli import command  # noqa: E402
+from mixflow.commands import calibrate_drifts as cd  # noqa: E402
 import drift_data as dd  # noqa: E402
 from mixflow.foamdict import read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
-from mixture_lambdas import load  # noqa: E402
+from mixflow.commands.mixture_lambdas import load  # noqa: E402
 
 
 def main():
@@ -91,7 +88,7 @@ def main():
     bp = os.path.join(target, "constant", "bulkProperties")
     if os.path.exists(bp):
         os.remove(bp)
-    r = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "calibrate_drifts.py"), case,
+    r = subprocess.run(command("calibrate") + [case,
                         "--target", target], capture_output=True, text=True)
     print(r.stdout + r.stderr)
     check(r.returncode == 0, f"calibrate_drifts.py exits 0 (got {r.returncode})")

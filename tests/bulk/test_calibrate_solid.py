@@ -10,13 +10,11 @@ import shutil
 import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "python"))
+from mixflow.cli import command  # noqa: E402
 from mixflow import outputs  # noqa: E402
 from mixflow.synthcase import checker, write  # noqa: E402
 
-CMD = [sys.executable, os.path.join(ROOT, "scripts", "calibrate_solid.py")]
+CMD = command("calibrate-solid")
 HEADER = "FoamFile { version 2.0; format ascii; class dictionary; object bulkProperties; }\n"
 TRUE_TAN_PHI, TRUE_NU = 0.6, 0.01
 

@@ -7,11 +7,7 @@ import os
 import shutil
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))  # calibrate_drifts
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import calibrate_drifts as cd  # noqa: E402
+from mixflow.commands import calibrate_drifts as cd  # noqa: E402
 from mixflow.foamdict import parse_dict, read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 

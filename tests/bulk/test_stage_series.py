@@ -12,9 +12,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))  # bulk_stages
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import bulk_stages  # noqa: E402
+from mixflow.commands import bulk_stages  # noqa: E402
 import drift_data as dd  # noqa: E402
 from mixflow import foamcase, outputs  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402

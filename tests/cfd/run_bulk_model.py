@@ -90,10 +90,13 @@ import math
 import os
 import re
 import shutil
+import subprocess
 import sys
 
 sys.dont_write_bytecode = True
 import run_liquid_cases as lc  # noqa: E402
+from mixflow import foamcase as fc  # noqa: E402
+from mixflow import liquidcase  # noqa: E402
 
 RHO_S = 2500.0
 G = 9.81
@@ -109,7 +112,7 @@ CFD = "dimensions 2;\ncellSize 0.005;\n"
 def bulk_case(work, name, liquid, bulk_props, end, write_interval=0.1, cfd=CFD):
     """A mixture scene run by the bulk model (cfdDict mixtureModel bulk)."""
     case = os.path.join(work, name)
-    lc.write_case(case, "content mixture;\n" + GEOMETRY + PARTICLES + f"liquid {{ {liquid} }}\n",
+    liquidcase.write_case(case, "content mixture;\n" + GEOMETRY + PARTICLES + f"liquid {{ {liquid} }}\n",
                   cfd + "mixtureModel bulk;\n", end, write_interval)
     hdr = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
     with open(os.path.join(case, "system/demDict"), "w") as f:
@@ -121,7 +124,7 @@ def bulk_case(work, name, liquid, bulk_props, end, write_interval=0.1, cfd=CFD):
 
 def liquid_case(work, name, liquid, end, write_interval=0.1):
     case = os.path.join(work, name)
-    lc.write_case(case, "content liquid;\n" + GEOMETRY + f"liquid {{ {liquid} }}\n", CFD, end,
+    liquidcase.write_case(case, "content liquid;\n" + GEOMETRY + f"liquid {{ {liquid} }}\n", CFD, end,
                   write_interval)
     return case
 
@@ -152,14 +155,14 @@ def prepared(a, work, name, bulk_props, end, write_interval, scene_geometry=GEOM
     """A bulk case through mixflowPrepare (no mesh yet), to be edited: its transportProperties
     (the bulkMixture coefficients), fvSchemes and fvSolution are the ones a user gets."""
     case = os.path.join(work, name)
-    lc.write_case(case, "content mixture;\n" + scene_geometry + PARTICLES +
+    liquidcase.write_case(case, "content mixture;\n" + scene_geometry + PARTICLES +
                   f"liquid {{ {liquid} }}\n", cfd + "mixtureModel bulk;\n", end, write_interval)
     hdr = "FoamFile { version 2.0; format ascii; class dictionary; object %s; }\n"
     with open(os.path.join(case, "system/demDict"), "w") as f:
         f.write(hdr % "demDict")
     with open(os.path.join(case, "constant/bulkProperties"), "w") as f:
         f.write(hdr % "bulkProperties" + bulk_props)
-    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
     # Fields at full precision: the checks below go to 1e-10.
     with open(os.path.join(case, "system/controlDict"), "a") as f:
         f.write("writePrecision 17;\n")
@@ -174,7 +177,7 @@ def edit(case, rel, subs):
     for pat, rep in subs:
         text, n = re.subn(pat, rep, text, flags=re.M)
         if n == 0:
-            lc.fc.fail(f"{path}: no match for {pat!r}")
+            fc.fail(f"{path}: no match for {pat!r}")
     with open(path, "w") as f:
         f.write(text)
 
@@ -214,24 +217,24 @@ def flat_layer(case, depth):
     text, n = re.subn(r"^internalField.*?^\)\s*;", f"internalField nonuniform List<scalar>\n"
                       f"{nx * ny}\n(\n{values}\n)\n;", text, flags=re.M | re.S)
     if n != 1:
-        lc.fc.fail(f"{path}: no internalField list")
+        fc.fail(f"{path}: no internalField list")
     with open(path, "w") as f:
         f.write(text)
 
 def run_bulk(a, case):
     """blockMesh and mixflowBulkFoam on an edited case; returns the solver log."""
-    lc.fc.run([a.blockmesh], case, "log.blockMesh")
-    return lc.fc.run([a.bulk_solver], case, "log.mixflowBulkFoam")
+    fc.run([a.blockmesh], case, "log.blockMesh")
+    return fc.run([a.bulk_solver], case, "log.mixflowBulkFoam")
 
 
 def field_times(case):
-    return [name for t, name in lc.fc.time_dirs(case) if t > 0]
+    return [name for t, name in fc.time_dirs(case) if t > 0]
 
 
 def steady_end(case, scale):
     """The last written U, and how far it moved from the write before (max |du_x| / scale)."""
     times = field_times(case)
-    last, prev = (lc.fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
+    last, prev = (fc.read_internal_field(os.path.join(case, t, "U")) for t in times[-1:-3:-1])
     change = max(abs(u[0] - v[0]) for u, v in zip(last, prev)) / scale
     return f"max |u({times[-1]}) - u({times[-2]})| {change:.1e}", last, change
 
@@ -239,7 +242,7 @@ def steady_end(case, scale):
 def liquid_limit(a, work):
     bulk = bulk_case(work, "bulk_alpha0", BINGHAM, "solidFraction 0;\n", 0.5)
     ref = liquid_case(work, "liquid_bingham", BINGHAM, 0.5)
-    return compare(lc.run_case(a, bulk, solver=a.bulk_solver), lc.run_case(a, ref),
+    return compare(liquidcase.run_case(a, bulk, solver=a.bulk_solver), liquidcase.run_case(a, ref),
                    "alpha_s = 0 vs mixflowFoam")
 
 
@@ -252,8 +255,8 @@ def newtonian(a, work):
     ref = liquid_case(work, "liquid_newtonian",
                       f"rheology Newtonian; density {rho:.10g}; viscosity {mu:.10g}; "
                       "surfaceTension 0;", 0.5)
-    sb = lc.run_case(a, bulk, solver=a.bulk_solver)
-    ok = compare(sb, lc.run_case(a, ref), f"lambda = 1, Newtonian solid vs liquid of "
+    sb = liquidcase.run_case(a, bulk, solver=a.bulk_solver)
+    ok = compare(sb, liquidcase.run_case(a, ref), f"lambda = 1, Newtonian solid vs liquid of "
                  f"rho {rho:g} kg/m3, mu {mu:.4g} Pa s")
     bal = max(abs(r["volume_balance"]) for r in sb)
     ok &= lc.check(bal <= 1e-6, f"mixture volume balance max {bal:.2e} (<= 1e-6)")
@@ -270,7 +273,7 @@ def cohesive_arrest(a, work):
     case = bulk_case(work, "bulk_cohesive", WATER,
                      f"solid {{ viscosity {nu_s:.10g}; tanPhi 0; cohesion {tau_c:.10g}; "
                      f"regularisation {m_y:g}; }}\n", 4.0, 1.0)
-    s = lc.run_case(a, case, solver=a.bulk_solver)
+    s = liquidcase.run_case(a, case, solver=a.bulk_solver)
     pe0 = s[0]["potential_energy_J"]
     excess = max(r["kinetic_energy_J"] - (pe0 - r["potential_energy_J"]) for r in s)
     ok = lc.check(excess <= 1e-4 * pe0, f"E_k - E_p released max {excess / pe0:+.2e} E_p0 (<= 1e-4)")
@@ -349,8 +352,8 @@ def drifting(a, work):
     ref = bulk_case(work, "bulk_no_drift", WATER, solid, 0.3)
     drift = bulk_case(work, "bulk_drift", WATER,
                       solid + "drifts { lambdaU 1.3; lambdaW 1.3; lambdaP 1; }\n", 0.3)
-    sr = lc.run_case(a, ref, solver=a.bulk_solver)
-    sd = lc.run_case(a, drift, solver=a.bulk_solver)
+    sr = liquidcase.run_case(a, ref, solver=a.bulk_solver)
+    sd = liquidcase.run_case(a, drift, solver=a.bulk_solver)
     bal = max(abs(r["volume_balance"]) for r in sd)
     ok = lc.check(bal <= 1e-6, f"mixture volume balance with drifts max {bal:.2e} (<= 1e-6)")
     fr, fd = sr[-1]["front_bed_m"], sd[-1]["front_bed_m"]
@@ -365,10 +368,10 @@ def drift_field_file(case, name, internal, window=None):
     time name) constant/drifts/WINDOW/NAME, a window of time-varying ones: INTERNAL is 'uniform V'
     or a list of cell values."""
     if not isinstance(internal, str):
-        internal = lc.fc.format_scalar_list(internal)
+        internal = fc.format_scalar_list(internal)
     rel = f"constant/drifts/{window}/{name}" if window else "constant/" + name
     os.makedirs(os.path.dirname(os.path.join(case, rel)), exist_ok=True)
-    lc.fc.write_foam_file(case, rel, "volScalarField", name,
+    fc.write_foam_file(case, rel, "volScalarField", name,
                           f"dimensions [0 0 0 0 0 0 0];\ninternalField {internal};\n"
                           "boundaryField\n{\n    \".*\" { type zeroGradient; }\n"
                           "    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
@@ -399,8 +402,8 @@ def drift_fields(a, work):
     consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     ref = bulk_case(work, "bulk_drift_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
     fld = field_drift_case(work, "bulk_drift_fields")
-    lc.run_case(a, ref, solver=a.bulk_solver)
-    lc.run_case(a, fld, solver=a.bulk_solver)
+    liquidcase.run_case(a, ref, solver=a.bulk_solver)
+    liquidcase.run_case(a, fld, solver=a.bulk_solver)
     log = open(os.path.join(fld, "log.mixflowBulkFoam")).read()
     ok = lc.check("drifts the fields constant/lambdaU" in log and "drift field" in log,
                   "the fields run reads constant/lambdaU, lambdaW, lambdaP")
@@ -444,15 +447,15 @@ def drift_field_range(a, work, window=None):
     with WINDOW, that window of time-varying fields (the others in range)."""
     windows = SERIES_WINDOWS if window else ()
     case = field_drift_case(work, "bulk_drift_field_range", windows)  # prepare wants the files
-    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
     nx, ny = mesh_size(case)
     values = [0.8] * (nx * ny)
     for c in (5, 77, 1000):
         values[c] = -2.0  # alpha_s 0.6: allowed lambda >= (0.01 - 0.6) / 0.4 = -1.475
     drift_field_file(case, "lambdaW", values, window)
-    lc.fc.run([a.blockmesh], case, "log.blockMesh")
-    r = lc.subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True,
-                          env=lc.fc.run_env())
+    fc.run([a.blockmesh], case, "log.blockMesh")
+    r = subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True,
+                          env=fc.run_env())
     msg = r.stdout + r.stderr
     file = f"constant/drifts/{window}/lambdaW" if window else "constant/lambdaW"
     want = [file, "field lambdaW", f"3 of {nx * ny} cells", "-1.475", "[-2, 0.8]"]
@@ -476,8 +479,8 @@ def drift_series(a, work):
     consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     ref = bulk_case(work, "bulk_series_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
     series = field_drift_case(work, "bulk_series_uniform", SERIES_WINDOWS)
-    lc.run_case(a, ref, solver=a.bulk_solver)
-    lc.run_case(a, series, solver=a.bulk_solver)
+    liquidcase.run_case(a, ref, solver=a.bulk_solver)
+    liquidcase.run_case(a, series, solver=a.bulk_solver)
     log = open(os.path.join(series, "log.mixflowBulkFoam")).read()
     read = len(re.findall(r"drift field \S*constant/drifts/", log))
     ok = lc.check("the fields of the 3 windows constant/drifts/<t>/" in log and read == 9,
@@ -499,7 +502,7 @@ def drifts_used(case, t):
     (writeBulkFields.H): lambda_u = U.fluid_x / U.solid_x, lambda_w = U.fluid_y / U.solid_y,
     lambda_p = (p.fluid / p.solid) rho_s / rho_f; {name: {cell: value}} where the divisor is
     not 0."""
-    field = {n: lc.fc.read_internal_field(os.path.join(case, t, n))
+    field = {n: fc.read_internal_field(os.path.join(case, t, n))
              for n in ("U.solid", "U.fluid", "p.solid", "p.fluid")}
     out = {k: {} for k in FIELD_DRIFTS}
     for i, (us, uf) in enumerate(zip(field["U.solid"], field["U.fluid"])):
@@ -534,7 +537,7 @@ def step_series_case(a, work, name, how, end):
     writes every 0.05 s at full precision. Returns it and the second window's drifts."""
     case = field_drift_case(work, name, tuple(f"{t:g}" for t in STEP), end, 0.05,
                             f"interpolation {how}; ")
-    lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
     nx, ny = mesh_size(case)
     later = [step_drifts(i) for i in range(nx * ny)]
     for k in FIELD_DRIFTS:
@@ -560,11 +563,11 @@ def drift_series_step(a, work):
     ref = field_drift_case(work, "bulk_step_fixed", (), 0.3, 0.05)
     with open(os.path.join(ref, "system/controlDict"), "a") as f:
         f.write("writePrecision 17;\n")
-    lc.run_case(a, ref, solver=a.bulk_solver)
+    liquidcase.run_case(a, ref, solver=a.bulk_solver)
     ok = True
     for how in ("linear", "nearest"):
         case, later = step_series_case(a, work, f"bulk_step_{how}", how, 0.3)
-        lc.run_case(a, case, solver=a.bulk_solver)
+        liquidcase.run_case(a, case, solver=a.bulk_solver)
         ok &= identical_runs(ref, case, before=STEP[0] - 1e-9)
         for t in field_times(case):
             if float(t) >= STEP[0] - 1e-9:
@@ -579,32 +582,32 @@ def drift_series_parallel(a, work):
     within 1e-10, as serially."""
     ranks = 2
     case, later = step_series_case(a, work, "bulk_series_parallel", "linear", 0.15)
-    lc.fc.run([a.prepare, "-case", case, "-np", str(ranks)], case, "log.mixflowPrepare")
-    lc.fc.run([a.blockmesh], case, "log.blockMesh")
+    fc.run([a.prepare, "-case", case, "-np", str(ranks)], case, "log.mixflowPrepare")
+    fc.run([a.blockmesh], case, "log.blockMesh")
     functions = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
                              "RunFunctions")
-    lc.fc.run(["bash", "-c", f'. "{functions}" && decompose {ranks}'], case, "log.decompose")
+    fc.run(["bash", "-c", f'. "{functions}" && decompose {ranks}'], case, "log.decompose")
     worst, files = 0.0, 0
     for r in range(ranks):
         proc = os.path.join(case, f"processor{r}")
-        cells = lc.fc.read_label_list(os.path.join(proc, "constant/polyMesh/cellProcAddressing"))
+        cells = fc.read_label_list(os.path.join(proc, "constant/polyMesh/cellProcAddressing"))
         for t in STEP:
             for k in FIELD_DRIFTS:
-                whole = lc.fc.read_internal_field(os.path.join(case, f"constant/drifts/{t:g}/{k}"),
+                whole = fc.read_internal_field(os.path.join(case, f"constant/drifts/{t:g}/{k}"),
                                                   len(later))
-                part = lc.fc.read_internal_field(os.path.join(proc, f"constant/drifts/{t:g}/{k}"),
+                part = fc.read_internal_field(os.path.join(proc, f"constant/drifts/{t:g}/{k}"),
                                                  len(cells))
                 worst = max(worst, max(abs(p - whole[c]) for p, c in zip(part, cells)))
                 files += 1
     ok = lc.check(files == ranks * len(STEP) * 3 and worst == 0,
                   f"decompose {ranks}: {files} window files on the ranks, each cell equal to the "
                   f"case's: max |diff| {worst:g} (0)")
-    log = lc.fc.run(lc.fc.launcher_tokens(a.mpiexec) + ["-x", "WM_PROJECT_DIR", "-np", str(ranks),
+    log = fc.run(fc.launcher_tokens(a.mpiexec) + ["-x", "WM_PROJECT_DIR", "-np", str(ranks),
                                                         a.bulk_solver, "-parallel"],
                     case, "log.mixflowBulkFoam")
     ok &= lc.check(re.search(rf"^nProcs\s*:\s*{ranks}\s*$", log, re.M) is not None,
                    f"a parallel run on {ranks} ranks")
-    lc.fc.run([a.reconstructpar, "-latestTime"], case, "log.reconstructPar")
+    fc.run([a.reconstructpar, "-latestTime"], case, "log.reconstructPar")
     t = field_times(case)[-1]
     return ok & check_drifts_used(case, t, step_weight(float(t), "linear"), later)
 
@@ -621,14 +624,14 @@ def prepared_bound(a, work, name, consts, fields, windows=None):
     for window, values in (windows or {None: fields or {}}).items():
         for k, v in values.items():
             drift_field_file(case, k, v, window)
-    check = lc.fc.run([a.prepare, "-case", case, "-np", "1", "-check"], case, "log.check")
-    log = lc.fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
+    check = fc.run([a.prepare, "-case", case, "-np", "1", "-check"], case, "log.check")
+    log = fc.run([a.prepare, "-case", case, "-np", "1"], case, "log.mixflowPrepare")
     with open(os.path.join(case, "system/controlDict.generated")) as f:
         dt = float(re.search(r"^maxDeltaT\s+(\S+);", f.read(), re.M).group(1))
     mu, mu_check = (float(re.search(r"viscosity at rest up to (\S+) Pa s", t).group(1))
                     for t in (log, check))
     if mu_check != mu:
-        lc.fc.fail(f"{case}: mixflowPrepare -check's viscosity at rest {mu_check:g} Pa s, its "
+        fc.fail(f"{case}: mixflowPrepare -check's viscosity at rest {mu_check:g} Pa s, its "
                    f"run's {mu:g} Pa s")
     return mu, dt
 
@@ -681,14 +684,14 @@ def closed_box(a, work):
     vols = [float(v) for v in re.findall(r"^Liquid volume sum\(voidfraction\*alpha\*V\) = (\S+)",
                                          log, re.M)]
     ok = lc.check(len(vols) > 100, f"{len(vols)} steps logged the mixture volume")
-    s = lc.read_series(case)
+    s = liquidcase.read_series(case)
     v0 = s[0]["volume_domain_m3"]  # the initial fields, 12 digits
     drift = max(abs(v - v0) / v0 for v in vols)
     ok &= lc.check(drift <= 1e-10, f"mixture volume |V(t) - V(0)| / V(0) max {drift:.2e} over "
                    f"{len(vols)} steps to t = {s[-1]['time_s']:g} s (<= 1e-10)")
     worst = 0.0
     for t in field_times(case):
-        vs = sum(lc.fc.read_internal_field(os.path.join(case, t, "alpha.solid"))) * cell * cell * 0.1
+        vs = sum(fc.read_internal_field(os.path.join(case, t, "alpha.solid"))) * cell * cell * 0.1
         worst = max(worst, abs(vs - alpha_s * v0) / (alpha_s * v0))
     ok &= lc.check(worst <= 1e-10, f"solid volume sum(alpha.solid V) = alpha_s V(0) at the "
                    f"{len(field_times(case))} writes: max relative deviation {worst:.2e} (<= 1e-10)")
@@ -726,7 +729,7 @@ def rest(a, work):
         run_bulk(a, case)
         times = field_times(case)
         umax = [max(math.sqrt(sum(c * c for c in u)) for u in
-                    lc.fc.read_internal_field(os.path.join(case, t, "U"))) for t in times]
+                    fc.read_internal_field(os.path.join(case, t, "U"))) for t in times]
         ok &= lc.check(max(umax) <= bound, f"{label} layer at rest: max |U| over the writes "
                        f"{', '.join(times)} s: {', '.join(f'{u:.1e}' for u in umax)} m/s "
                        f"(<= {bound:g})")
@@ -745,7 +748,7 @@ def periodic_layer(a, work, name, bulk_props, n, h, length, nx, theta, end, rho,
         bed = re.search(r"^\s*bottom\s*\{\s*(.*?)\s*\}\s*$", f.read(), re.M).group(1)
     g = (G * math.sin(theta), -G * math.cos(theta), 0.0)
     dz = h / n
-    lc.fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict", f"""\
+    fc.write_foam_file(case, "system/blockMeshDict", "dictionary", "blockMeshDict", f"""\
 scale 1;
 vertices ((0 0 0) ({length} 0 0) ({length} {h} 0) (0 {h} 0)
           (0 0 {dz}) ({length} 0 {dz}) ({length} {h} {dz}) (0 {h} {dz}));
@@ -761,11 +764,11 @@ boundary
 );
 mergePatchPairs ();
 """)
-    lc.fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",
+    fc.write_foam_file(case, "constant/g", "uniformDimensionedVectorField", "g",
                           "dimensions [0 1 -2 0 0 0 0];\nvalue (%.17g %.17g %.17g);\n" % g)
 
     def field(name, cls, dims, internal, patches):
-        lc.fc.write_foam_file(case, "0/" + name, cls, name,
+        fc.write_foam_file(case, "0/" + name, cls, name,
                               f"dimensions {dims};\ninternalField uniform {internal};\n"
                               "boundaryField\n{\n" + "".join(f"    {k} {{ {v} }}\n"
                                                               for k, v in patches.items()) + "}\n")
@@ -785,7 +788,7 @@ mergePatchPairs ();
     edit(case, "system/fvSolution", [(r"^PIMPLE\s*\{", f"PIMPLE\n{{\n    pRefCell {p_ref[0]};\n"
                                       f"    pRefValue {p_ref[1]:.17g};")])
     # No dam-break channel: the liquidObservables of prepare's controlDict do not apply.
-    lc.fc.write_foam_file(case, "system/controlDict", "dictionary", "controlDict", f"""\
+    fc.write_foam_file(case, "system/controlDict", "dictionary", "controlDict", f"""\
 application mixflowBulkFoam;
 startFrom startTime; startTime 0; stopAt endTime; endTime {end};
 deltaT 1e-4; writeControl adjustable; writeInterval {end / writes}; purgeWrite 0;
@@ -919,7 +922,7 @@ def sliding_block(a, work):
     worst, rows = 0.0, 0
     for tname in field_times(case):
         tt = float(tname)
-        cells = lc.fc.read_internal_field(os.path.join(case, tname, "U"))
+        cells = fc.read_internal_field(os.path.join(case, tname, "U"))
         ek = sum(c[0] ** 2 + c[1] ** 2 for c in cells) / (len(cells) * u0 * u0)
         exact = max(1 - tt / t_stop, 0.0) ** 2
         worst = max(worst, abs(ek - exact))
@@ -1025,7 +1028,7 @@ def mui_rest(a, work):
     ok = True
     for t in field_times(case):
         umax = max(math.hypot(u[0], u[1]) for u in
-                   lc.fc.read_internal_field(os.path.join(case, t, "U")))
+                   fc.read_internal_field(os.path.join(case, t, "U")))
         ok &= lc.check(umax <= bound, f"theta {math.degrees(theta):.3f} deg (atan mu_s "
                        f"{math.degrees(math.atan(chi * MU_S)):.3f}): t = {t} s, max |U| "
                        f"{umax:.4e} m/s (<= h ln(mu_s/(mu_s - tan(theta)/chi))/m_y = "

@@ -42,26 +42,7 @@ import re
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import foamcase as fc  # noqa: E402
-
-
-def prepare(template, case, end_time, setfields, blockmesh):
-    fc.copy_case(template, case)
-    ctrl = os.path.join(case, "system", "controlDict")
-    fc.set_entry(ctrl, "endTime", end_time)
-    fc.set_entry(ctrl, "writeInterval", end_time)
-    fc.set_entry(ctrl, "writePrecision", 17)
-    with open(ctrl) as f:
-        text = f.read()
-    text = re.sub(r"^#sinclude.*$", "", text, flags=re.M)  # drop the sampling function object
-    with open(ctrl, "w") as f:
-        f.write(text)
-    orig = os.path.join(case, "0", "alpha.water.orig")
-    if os.path.isfile(orig):
-        os.replace(orig, os.path.join(case, "0", "alpha.water"))
-    fc.run([blockmesh], case, "log.blockMesh")
-    fc.run([setfields], case, "log.setFields")
 
 
 def converge_solvers(case):
@@ -130,7 +111,7 @@ def main():
 
     work = os.path.abspath(a.workdir)
     base = os.path.join(work, "prepared")
-    prepare(a.template, base, a.end_time, a.setfields, a.blockmesh)
+    fc.prepare_dam_break(a.template, base, a.end_time, a.setfields, a.blockmesh)
     if loose:
         converge_solvers(base)
 

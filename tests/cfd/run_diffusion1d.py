@@ -26,9 +26,7 @@ import math
 import os
 import re
 import shutil
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow.foamcase import (fail, launcher_tokens, read_internal_field, require_foam_env, run,
                       set_decomposition, set_entry, time_dirs)
 

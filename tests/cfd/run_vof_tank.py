@@ -92,7 +92,6 @@ import shutil
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import foamcase as fc  # noqa: E402
 
 G = 9.81

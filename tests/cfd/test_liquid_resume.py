@@ -30,7 +30,6 @@ import sys
 import time
 
 sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import foamcase as fc  # noqa: E402
 from mixflow import outputs  # noqa: E402
 

@@ -22,7 +22,6 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import outputs  # noqa: E402
 
 dem, prepare, case, work = sys.argv[1:5]

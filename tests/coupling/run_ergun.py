@@ -43,8 +43,7 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-import coupledcase as cc  # noqa: E402
+from mixflow import coupledcase as cc  # noqa: E402
 from mixflow import foamcase as fc  # noqa: E402
 
 D, EPS, L_REF, RHO, NU = 1e-3, 0.451335, 0.0156, 10.0, 1.5e-4

@@ -40,7 +40,6 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import foamcase as fc  # noqa: E402
 from mixflow import foamdict  # noqa: E402
 from mixflow import outputs  # noqa: E402

@@ -28,8 +28,7 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-import coupledcase as cc  # noqa: E402
+from mixflow import coupledcase as cc  # noqa: E402
 from mixflow import foamcase as fc  # noqa: E402
 
 

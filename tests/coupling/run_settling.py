@@ -25,7 +25,7 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-import coupledcase as cc  # noqa: E402
+from mixflow import coupledcase as cc  # noqa: E402
 
 
 def main():

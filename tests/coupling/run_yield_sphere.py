@@ -48,7 +48,7 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-import coupledcase as cc  # noqa: E402
+from mixflow import coupledcase as cc  # noqa: E402
 
 G = 9.81
 D, RHO_P = 0.024, 2500.0

@@ -35,7 +35,6 @@ import subprocess
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import outputs  # noqa: E402
 
 root, bindir, work = (os.path.abspath(a) for a in sys.argv[1:4])

@@ -3,7 +3,7 @@
 
 200 grains (paper material, softened by --factor) poured into a closed box 6 d wide and settled
 for 0.6 s under gravity, on plain LIGGGHTS with the simulator's contact lines
-(scripts/stability_dem.py, the sweep of results/stability). The step is --hertz-fraction x the
+(mixflow stability-dem, the sweep of results/stability). The step is --hertz-fraction x the
 shorter elastic contact time (grain-grain, grain-wall) at the pour's impact speed sqrt(2 g h_top),
 as system/demDict maxHertzFraction bounds it (dem/Scene.cpp hertzTimeMin).
 Pass:
@@ -20,12 +20,10 @@ usage: run_step_limit.py --workdir DIR [--factor F] [--hertz-fraction X]
 """
 import argparse
 import math
-import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import stability_dem as sd  # noqa: E402
+from mixflow.commands import stability_dem as sd  # noqa: E402
 
 
 def main():

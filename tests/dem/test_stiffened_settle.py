@@ -27,7 +27,8 @@ import subprocess
 import sys
 
 exe, root, work = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
-sys.path.insert(0, os.path.join(root, "python"))
+# contacts.settled_stats takes the declared defaults from this build's mixflowSchema.
+os.environ["MIXFLOW_BUILD"] = os.path.dirname(os.path.dirname(os.path.abspath(exe)))
 from mixflow import contacts, foamdict  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 

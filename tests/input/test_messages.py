@@ -35,7 +35,7 @@ import shutil
 import subprocess
 import sys
 
-import inputcase  # the script's folder is on sys.path
+import inputcase  # beside this script
 from inputcase import check, edit, tree
 
 root, build_bin, work = (os.path.abspath(p) for p in sys.argv[1:4])

@@ -23,7 +23,7 @@ import re
 import subprocess
 import sys
 
-import inputcase  # the script's folder is on sys.path
+import inputcase  # beside this script
 from inputcase import check, edit, last_line
 
 root, dem_exe, prepare_exe, work = (os.path.abspath(p) for p in sys.argv[1:5])

@@ -27,7 +27,6 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import observables, outputs  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 

@@ -21,7 +21,6 @@ import h5py
 import numpy as np
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow import synthcase as sc  # noqa: E402
 
 exe, work = sys.argv[1], sys.argv[2]

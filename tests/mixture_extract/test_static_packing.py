@@ -23,7 +23,6 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 from mixflow.synthcase import checker  # noqa: E402
 from snapshot_twins import check_twins, run_short_column  # noqa: E402
 

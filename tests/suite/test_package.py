@@ -10,29 +10,34 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
   2. foamcase.set_entry: an existing top-level entry is set with the rest of the file kept byte for
      byte; an absent entry or a block stops with "cannot set KEY in PATH" (exit status 1);
   3. paper: the pure liquids' subcritical times are those of PAPER, '+' -> '&' in the paper's
-     names; scripts/suite.py's DictError and TABLE1 are the package's (report.py catches
+     names; mixflow suite's DictError and TABLE1 are the package's (report.py catches
      suite.DictError);
   4. outputs.copy_inputs: of a case holding every kind of output a run leaves at its top level
      (postProcessing, VTK, dem, .done, .failed, log.*, previous-run.*, processor*, time
      directories other than 0, resume files) and inputs (Allrun, system/, constant/, 0/, 0.orig/,
      an output-like name inside system/ and 0/), exactly the inputs are copied; keep=("dem",
      "log.mixflowDem") takes dem/ along without its resume state and log, and that one log; an
-     existing DST stops the copy (FileExistsError).
+     existing DST stops the copy (FileExistsError);
+  5. the installed package is this checkout's (`import mixflow` from anywhere: mixflow.ROOT), and
+     `mixflow --help` and `mixflow VERB --help` of every verb exit 0;
+  6. mixflow.schema: the declarations of `mixflowSchema -json` ($MIXFLOW_BUILD) name every
+     dictionary file, each default lies in its declared range or words (none where the default
+     is required, auto or taken from elsewhere: defaultNote), an entry a dictionary
+     does not set takes the declared default (suite's cost estimate with and without
+     sample.solidFraction), and a build without mixflowSchema stops with SchemaError.
 """
 import io
 import math
 import os
 import shutil
+import subprocess
 import sys
 from contextlib import redirect_stdout
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import suite  # noqa: E402
-from mixflow import foamcase, foamdict, outputs, paper  # noqa: E402
+import mixflow  # noqa: E402
+from mixflow.commands import suite  # noqa: E402
+from mixflow import cli, foamcase, foamdict, outputs, paper, schema  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
@@ -80,7 +85,7 @@ for key in ("startTime", "functions"):
     check(status == 1 and f"cannot set {key} in {ctrl}" in out.getvalue(),
           f"set_entry of {key} ({'absent' if key == 'startTime' else 'a block'}) stops with status 1")
 
-# 3. paper and the names scripts/suite.py takes from the package
+# 3. paper and the names mixflow suite takes from the package
 check(paper.PAPER_SUBCRITICAL == {"W": 1.2, "HB": 1.1, "B": 1.0}
       and all(paper.PAPER["subcritical"][k] == v for k, v in paper.PAPER_SUBCRITICAL.items()),
       "paper: the pure liquids' subcritical times")
@@ -128,7 +133,54 @@ try:
 except FileExistsError:
     raised = True
 check(raised, "copy_inputs into an existing directory: FileExistsError")
-check(not hasattr(suite, "OUTPUT_NAMES"), "scripts/suite.py has no output list of its own")
+check(not hasattr(suite, "OUTPUT_NAMES"), "mixflow suite has no output list of its own")
+
+# 5. the installed package and its command
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+check(os.path.samefile(mixflow.ROOT, ROOT), f"import mixflow: this checkout's package ({mixflow.ROOT}; "
+      "another checkout's is installed when not: run scripts/build.sh here)")
+for verb in [None, "bench"] + list(cli.VERBS):
+    args = ["--help"] if verb is None else [verb, "--help"]
+    r = subprocess.run(cli.command(*args), capture_output=True, text=True, cwd="/")
+    check(r.returncode == 0 and "usage" in r.stdout,
+          f"mixflow {' '.join(args)}: exit {r.returncode}" + (f" ({r.stderr.strip()[-200:]})" if r.returncode else ""))
+
+# 6. mixflow.schema: the C++ declarations
+decl = schema.declarations()
+check(set(decl) >= {"constant/sceneProperties", "system/demDict", "system/cfdDict",
+                    "constant/mixflowProperties", "constant/couplingProperties",
+                    "constant/bulkProperties", "system/extractDict"}, f"schema: files {sorted(decl)}")
+bad = []
+for file, entries in decl.items():
+    for entry, p in entries.items():
+        d, r = p["default"], p.get("range")
+        if p["type"] in ("scalar", "integer") and d is not None:
+            lo = -math.inf if r["lo"] is None else r["lo"]
+            hi = math.inf if r["hi"] is None else r["hi"]
+            if not ((lo < d if r["loOpen"] else lo <= d) and (d < hi if r["hiOpen"] else d <= hi)):
+                bad.append(f"{file} {entry} {d} {r}")
+        if p["type"] == "word" and d is not None and p["words"] and d not in p["words"]:
+            bad.append(f"{file} {entry} {d} {p['words']}")
+check(not bad and sum(map(len, decl.values())) > 100,
+      f"schema: {sum(map(len, decl.values()))} entries, every default in its range or words {bad}")
+phi = schema.default("constant/sceneProperties", "sample.solidFraction")
+scene = ("sample { length 0.2; height 0.1; width 0.05; %s}\nchannel { length 1; height 0.3; }\n"
+         "particles { diameter 0.004; }\n")
+sizes = []
+for extra in ("", f"solidFraction {phi!r}; "):
+    case = os.path.join(work, "schema_case" + str(len(sizes)))
+    os.makedirs(os.path.join(case, "constant"))
+    with open(os.path.join(case, "constant", "sceneProperties"), "w") as f:
+        f.write(scene % extra)
+    sizes.append(suite.scene_size(case, {}, "particles")["particles"])
+check(sizes[0] == sizes[1] and 0 < phi < 1, f"an absent solidFraction is the declared {phi}: "
+      f"{sizes[0]:.6g} particles both")
+empty = os.path.join(work, "no_build")
+os.makedirs(empty)
+r = subprocess.run([sys.executable, "-c", "from mixflow import schema; schema.declarations()"],
+                   capture_output=True, text=True, env=dict(os.environ, MIXFLOW_BUILD=empty))
+check(r.returncode != 0 and "SchemaError: mixflowSchema not found in " + empty in r.stderr,
+      f"no mixflowSchema in MIXFLOW_BUILD: SchemaError ({r.stderr.strip().splitlines()[-1]})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

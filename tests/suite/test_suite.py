@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The dictionary editor (python/mixflow/foamdict.py) and scripts/suite.py's tier files, plan and
+"""The dictionary editor (python/mixflow/foamdict.py) and mixflow suite's tier files, plan and
 resume bookkeeping (no simulation).
 
 usage: test_suite.py WORKDIR
@@ -28,9 +28,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "python"))
-import suite  # noqa: E402
+from mixflow.commands import suite  # noqa: E402
 from mixflow import foamdict  # noqa: E402
 
 failures = []

@@ -1,0 +1,1 @@
+"""The verbs of the `mixflow` command (mixflow/cli.py), one module each with its main()."""

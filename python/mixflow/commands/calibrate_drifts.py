@@ -1,0 +1,569 @@
+"""The calibration command of the quasi two-phase bulk model (docs/calibration.md): constant drifts
+lambda_u, lambda_w, lambda_p from a finished CFD-DEM mixture case, written into a bulk case's
+constant/bulkProperties `drifts` block.
+
+usage: mixflow calibrate SOURCE [--target CASE] [--estimator wls|median]
+           [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
+           [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
+           [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
+
+SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflowExtract) or an
+.h5 file. The bins used (the same for both estimators) are, in the windows inside [T0, T1]: the
+extractor's valid_lambda_<q> mask, alpha_s >= --min-solid-fraction, and flowing: solid speed
+sqrt(u_s^2 + w_s^2) >= --flowing-factor * sqrt(g H), H the sample height (root attribute
+sample_height_m). Estimators: wls (default), the weighted least-squares slope through the origin
+of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention); median, the median of
+the per-bin ratios. Uncertainty: the 16-84 % interval of the estimate over a bootstrap of the
+spatial bins (each drawn with all its windows). Prints a table; with --target writes
+CASE/constant/bulkProperties (created if absent; only the drifts entries change) and the JSON
+(default CASE/constant/bulkProperties.calibration.json). Bad input exits 2 before writing.
+--fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
+the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell,
+from the bin holding the cell centre, the wls slope of that bin's selected windows (--field-mean
+wls, default) or the time mean of its per-bin ratios (u_f / u_s, ...; --field-mean ratio), weighted
+by the samples' weight w (--weights); the constant estimate where the bin has no selected window or
+the cell lies outside the grid; clipped into the bulk model's range (the count is printed).
+--per-window (with --fields) writes instead one set per extraction window inside --windows,
+CASE/constant/drifts/<t>/lambdaU, lambdaW, lambdaP (t the window's centre, 6 digits), each cell
+from its bin's samples of that window alone, or with --window-span K of the K windows centred on it
+(the constant estimate where the bin has none then),
+and `drifts { fields on; timeVarying on; }`: the bulk model takes them at its time, linear in time
+between windows (bulkProperties drifts.interpolation). The counts printed are summed over the
+windows.
+"""
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import shutil
+import sys
+
+import h5py
+import numpy as np
+
+from mixflow import bulkprops, foamcase
+from mixflow.foamcase import FoamFileError, format_scalar_list
+from mixflow.foamdict import DictError, parse_dict
+from mixflow.paper import G
+from mixflow.commands.mixture_lambdas import load, quantiles, wls_slope
+
+H5_IN_CASE = os.path.join("postProcessing", "mixture", "mixture.h5")
+# drift -> (bulkProperties key, the extractor's mask, solid and fluid quantity names)
+DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
+          "lambda_w": ("lambdaW", "lambda_w", "w_s", "w_f"),
+          "lambda_p": ("lambdaP", "lambda_p_density", "p_s / rho_s", "p_f / rho_f")}
+ESTIMATORS = ("wls", "median")
+WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
+# prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
+# cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
+DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
+
+
+class InputError(Exception):
+    """Bad input: the message names the file or option, the entry and the allowed range."""
+
+
+def find_h5(source):
+    path = os.path.join(source, H5_IN_CASE) if os.path.isdir(source) else source
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file (SOURCE is a case directory holding {H5_IN_CASE}, "
+                         "written by mixflowExtract, or an .h5 file)")
+    return path
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def parse_windows(text):
+    """'T0:T1' (either side may be empty) -> (t0, t1) in s."""
+    try:
+        a, b = text.split(":")
+        t0 = float(a) if a.strip() else 0.0
+        t1 = float(b) if b.strip() else math.inf
+    except ValueError:
+        raise InputError(f"--windows '{text}': expected T0:T1 in s (e.g. 0.1:1.0)") from None
+    if not (0 <= t0 < t1):
+        raise InputError(f"--windows '{text}': allowed 0 <= T0 < T1")
+    return t0, t1
+
+
+def check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator):
+    if not flowing_factor > 0:
+        raise InputError(f"--flowing-factor {flowing_factor}: allowed > 0")
+    if not 0 <= min_solid_fraction < 1:
+        raise InputError(f"--min-solid-fraction {min_solid_fraction}: allowed [0, 1)")
+    if weights not in WEIGHTS:
+        raise InputError(f"--weights {weights}: allowed {', '.join(WEIGHTS)}")
+    if not n_boot >= 10:
+        raise InputError(f"--bootstrap {n_boot}: allowed whole >= 10")
+    if estimator not in ESTIMATORS:
+        raise InputError(f"--estimator {estimator}: allowed {', '.join(ESTIMATORS)}")
+
+
+def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
+    """Per drift the selected (window, bin) samples: x (solid), y (fluid), w (weight) and block
+    (the spatial bin, for the bootstrap); the selection's description; the windows inside
+    WINDOWS as (index, t0, t1)."""
+    f, valid, attrs = d["fields"], d["valid"], d["attrs"]
+    for name in ("alpha_s", "u_s", "w_s", "u_f", "w_f", "p_s", "p_f"):
+        if name not in f:
+            raise InputError(f"{h5}: no dataset /fields/{name} (a mixflowExtract file with fluid "
+                             "data has it)")
+    if "sample_height_m" not in attrs:
+        raise InputError(f"{h5}: no root attribute sample_height_m (the flowing criterion's H)")
+    H = float(attrs["sample_height_m"])
+    speed_min = flowing_factor * math.sqrt(G * H)
+    t0, t1 = d["windows"]["t0"], d["windows"]["t1"]
+    tol = 1e-9 * max(1.0, float(np.max(np.abs(t1)))) if t1.size else 0.0
+    win = (t0 >= windows[0] - tol) & (t1 <= windows[1] + tol)
+    if not win.any():
+        raise InputError(f"--windows {windows[0]:g}:{windows[1]:g}: holds none of the file's "
+                         f"{t0.size} windows, which span [{float(np.min(t0)) if t0.size else 0:g}, "
+                         f"{float(np.max(t1)) if t1.size else 0:g}] s ({h5} /windows)")
+    rho_s = float(attrs.get("particle_density_kg_m3", float("nan")))
+    rho_f = float(attrs.get("liquid_density_kg_m3", float("nan")))
+    if not (rho_s > 0 and rho_f > 0):
+        raise InputError(f"{h5}: root attributes particle_density_kg_m3 {rho_s:g} and "
+                         f"liquid_density_kg_m3 {rho_f:g} must be > 0 (the density convention "
+                         "of lambda_p needs both)")
+    if WEIGHTS[weights] is None:
+        wt = np.ones_like(f["alpha_s"])
+    elif WEIGHTS[weights] in d["counts"]:
+        wt = d["counts"][WEIGHTS[weights]].astype(float)
+    else:
+        raise InputError(f"{h5}: no dataset /counts/{WEIGHTS[weights]} for --weights {weights}")
+    nw, ny, nx = f["alpha_s"].shape
+    block = np.broadcast_to(np.arange(ny * nx).reshape(1, ny, nx), (nw, ny, nx))
+    speed = np.sqrt(f["u_s"] ** 2 + f["w_s"] ** 2)
+    with np.errstate(invalid="ignore"):
+        base = win[:, None, None] & (f["alpha_s"] >= min_solid_fraction) & (speed >= speed_min)
+    xy = {"lambda_u": (f["u_s"], f["u_f"]), "lambda_w": (f["w_s"], f["w_f"]),
+          "lambda_p": (f["p_s"] / rho_s, f["p_f"] / rho_f)}
+    out = {}
+    for q, (key, mask, _, _) in DRIFTS.items():
+        if mask not in valid and q == "lambda_p":
+            mask = "lambda_p_raw"  # same conditions (mixture, |p_s| >= minPressure)
+        if mask not in valid:
+            raise InputError(f"{h5}: no dataset /masks/valid_{mask}")
+        x, y = xy[q]
+        m = base & valid[mask] & np.isfinite(x) & np.isfinite(y) & (wt > 0)
+        if not m.any():
+            n_valid = int((valid[mask] & win[:, None, None]).sum())
+            raise InputError(
+                f"{h5}: no bin to calibrate {q} from: in the {int(win.sum())} selected windows "
+                f"{n_valid} (window, bin) pairs have /masks/valid_{mask}, none of them with "
+                f"alpha_s >= {min_solid_fraction:g} (--min-solid-fraction, allowed [0, 1)) and "
+                f"solid speed >= {speed_min:.4g} m/s = {flowing_factor:g} sqrt(g H), H "
+                f"{H:g} m (--flowing-factor, allowed > 0)")
+        out[q] = {"x": x[m], "y": y[m], "w": wt[m], "block": block[m], "window": np.nonzero(m)[0],
+                  "mask": m, "x_all": x, "y_all": y, "w_all": wt}
+    used = np.unique(np.concatenate([s["window"] for s in out.values()]))
+    selected = [(int(i), float(t0[i]), float(t1[i])) for i in np.nonzero(win)[0]]
+    info = {"flowing_speed_m_s": speed_min, "sample_height_m": H, "g_m_s2": G,
+            "rho_s_kg_m3": rho_s, "rho_f_kg_m3": rho_f,
+            "windows_used": [float(t0[used].min()), float(t1[used].max())],
+            "windows_used_count": int(used.size), "windows_in_file": int(t0.size),
+            "source_sample_solid_fraction": float(attrs.get("sample_solid_fraction", 0.0))}
+    return out, info, selected
+
+
+def estimate(x, y, w, estimator):
+    return wls_slope(x, y, w) if estimator == "wls" else float(np.median(y / x))
+
+
+def bootstrap(s, estimator, n_boot, seed):
+    """Estimates over N_BOOT resamplings of the spatial bins (with replacement, each with all its
+    windows: successive windows of one bin are correlated, so they are drawn together)."""
+    rng = np.random.default_rng(seed)
+    blocks, inv = np.unique(s["block"], return_inverse=True)
+    nb = blocks.size
+    draws = rng.integers(0, nb, size=(n_boot, nb))
+    mult = np.stack([np.bincount(r, minlength=nb) for r in draws]).astype(float)  # (boot, block)
+    x, y, w = s["x"], s["y"], s["w"]
+    if estimator == "wls":
+        sxy = np.bincount(inv, weights=w * x * y, minlength=nb)
+        sxx = np.bincount(inv, weights=w * x * x, minlength=nb)
+        den = mult @ sxx
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return (mult @ sxy) / den
+    r = y / x
+    order = np.argsort(r)
+    r, inv = r[order], inv[order]
+    out = np.empty(n_boot)
+    for k0 in range(0, n_boot, 100):  # (100, samples) at a time bounds the memory
+        cw = np.cumsum(mult[k0:k0 + 100][:, inv], axis=1)
+        out[k0:k0 + 100] = r[np.argmax(cw >= 0.5 * cw[:, -1:], axis=1)]  # lower weighted median
+    return out
+
+
+def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0.1,
+              windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1):
+    """The drifts of SOURCE (case directory or .h5): a dict with per drift the chosen estimate
+    ("value"), both estimators, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
+    counts, and the selection ("selection") and file ("h5", "sha256")."""
+    check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator)
+    h5 = find_h5(source)
+    try:
+        d = load(h5)
+    except (OSError, KeyError) as e:
+        raise InputError(f"{h5}: not a mixflowExtract HDF5 file ({e})") from None
+    sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights)
+    res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator,
+           "selection": dict(info, flowing_factor=flowing_factor,
+                             min_solid_fraction=min_solid_fraction, weights=weights,
+                             windows_option=[windows[0], None if math.isinf(windows[1])
+                                             else windows[1]],
+                             bootstrap=n_boot, seed=seed),
+           "drifts": {}}
+    for q, s in sel.items():
+        r = {"samples": int(s["x"].size), "spatial_bins": int(np.unique(s["block"]).size),
+             "ratio_quantiles": quantiles(s["y"] / s["x"])}
+        for est in ESTIMATORS:
+            v = estimate(s["x"], s["y"], s["w"], est)
+            b = bootstrap(s, est, n_boot, seed)
+            b = b[np.isfinite(b)]
+            r[est] = {"value": v, "p16": float(np.quantile(b, 0.16)) if b.size else None,
+                      "p84": float(np.quantile(b, 0.84)) if b.size else None}
+        if r[estimator]["value"] is None:
+            raise InputError(f"{h5}: {q}: the selected bins' {DRIFTS[q][2]} are all 0; no slope")
+        r["value"] = r[estimator]["value"]
+        res["drifts"][q] = r
+    res["_samples"] = sel  # the full (window, y, x) selection, for --fields
+    res["_windows"] = selected  # the windows inside --windows, for --per-window
+    return res
+
+
+def table(res):
+    lines = [f"{'drift':9} {'value':>8} {'16%':>8} {'84%':>8}   {'wls':>8} {'median':>8}   "
+             f"{'ratio p10':>9} {'p50':>8} {'p90':>8} {'samples':>8} {'bins':>5}"]
+    for q, r in res["drifts"].items():
+        e, rq = r[res["estimator"]], r["ratio_quantiles"]
+        lines.append(f"{q:9} {r['value']:8.4g} {e['p16']:8.4g} {e['p84']:8.4g}   "
+                     f"{r['wls']['value']:8.4g} {r['median']['value']:8.4g}   {rq['p10']:9.4g} "
+                     f"{rq['median']:8.4g} {rq['p90']:8.4g} {r['samples']:8d} "
+                     f"{r['spatial_bins']:5d}")
+    s = res["selection"]
+    lines.append(f"estimator {res['estimator']} (16-84 % bootstrap over spatial bins, "
+                 f"{s['bootstrap']} draws); flowing: solid speed >= {s['flowing_speed_m_s']:.4g} "
+                 f"m/s ({s['flowing_factor']:g} sqrt(g H), H {s['sample_height_m']:g} m), "
+                 f"alpha_s >= {s['min_solid_fraction']:g}; windows {s['windows_used'][0]:g}-"
+                 f"{s['windows_used'][1]:g} s ({s['windows_used_count']} of "
+                 f"{s['windows_in_file']}); weights {s['weights']}")
+    return "\n".join(lines)
+
+
+def _num(v):
+    return f"{v:.6g}"
+
+
+def _solid_fraction(target, tree, res):
+    """alpha_s the bulk model uses (prepare/BulkModel.cpp): bulkProperties solidFraction, else
+    the target's sceneProperties sample.solidFraction, else the source's."""
+    if "solidFraction" in tree:
+        return float(tree["solidFraction"]), "constant/bulkProperties solidFraction"
+    scene = os.path.join(target, "constant", "sceneProperties")
+    if os.path.isfile(scene):
+        try:
+            with open(scene) as f:
+                sf = parse_dict(f.read()).get("sample", {}).get("solidFraction")
+            if sf is not None:
+                return float(sf), f"{scene} sample.solidFraction"
+        except (DictError, ValueError):
+            pass
+    return res["selection"]["source_sample_solid_fraction"], "the source's sample_solid_fraction"
+
+
+def bulk_properties_text(path, drifts, source, block, fields=False, per_window=False):
+    """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; lambdaP; source; }
+    (and `fields on;` with FIELDS, `timeVarying on;` with PER_WINDOW) set through
+    foamdict.edit_dict: every other byte of an existing file stays as it is. BLOCK is the file's
+    drifts block: a `fields` or `timeVarying` it has that this calibration does not write is set
+    off, so that no drifts of an earlier calibration stay in use."""
+    entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
+    for key, on in (("fields", fields), ("timeVarying", per_window)):
+        if on or key in block:
+            entries[key] = "on" if on else "off"
+    entries["source"] = '"' + source.replace('"', "'") + '"'
+    return bulkprops.block_text(path, "drifts", entries)
+
+
+
+def bin_means(s, how):
+    """Per spatial bin (y, x) over the selected windows, NaN where the bin has none: the weighted
+    time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), or the wls slope of the bin's
+    windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less)."""
+    m = s["mask"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(m, s["x_all"], 0.0)
+        y = np.where(m, s["y_all"], 0.0)
+        w = np.where(m, s["w_all"], 0.0)
+        if how == "wls":
+            num, den = (w * x * y).sum(axis=0), (w * x * x).sum(axis=0)
+        else:
+            num = (w * np.where(m, y / np.where(m, x, 1.0), 0.0)).sum(axis=0)
+            den = w.sum(axis=0)
+        return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.nan)
+
+
+def cell_centres(target):
+    """The cell centres (x, y) of TARGET's mesh as an (n, 2) array."""
+    try:
+        return np.array(foamcase.cell_centres(target))
+    except FoamFileError as e:
+        raise InputError(f"{e} (--fields writes the drifts on the target's mesh: run "
+                         "mixflowPrepare and blockMesh on it first)") from None
+
+
+def drift_fields(res, centres, lo, hi, how, window=None):
+    """Per drift the cell values on CENTRES (see bin_means) and their bookkeeping; with WINDOW
+    (indices of the file's windows) from those windows' samples alone."""
+    with h5py.File(res["h5"], "r") as h:
+        xe, ye = h["grid/x_edges"][()], h["grid/y_edges"][()]
+    ix = np.searchsorted(xe, centres[:, 0], side="right") - 1
+    iy = np.searchsorted(ye, centres[:, 1], side="right") - 1
+    inside = (ix >= 0) & (ix < xe.size - 1) & (iy >= 0) & (iy < ye.size - 1)
+    out = {}
+    for q, s in res["_samples"].items():
+        if window is not None:
+            mask = np.zeros_like(s["mask"])
+            mask[list(window)] = s["mask"][list(window)]
+            s = dict(s, mask=mask)
+        means = bin_means(s, how)
+        v = np.full(len(centres), np.nan)
+        v[inside] = means[iy[inside], ix[inside]]
+        fallback = ~np.isfinite(v)
+        v[fallback] = res["drifts"][q]["value"]
+        clipped = (v < lo) | (v > hi)
+        v = np.clip(v, lo, hi)
+        out[q] = {"values": v, "cells": int(v.size), "from_bins": int((~fallback).sum()),
+                  "fallback_cells": int(fallback.sum()), "clipped_cells": int(clipped.sum()),
+                  "bins_with_value": int(np.isfinite(means).sum()), "bins": int(means.size),
+                  "min": float(v.min()), "max": float(v.max())}
+    return out
+
+
+FIELD_MEAN_TEXT = {"wls": "the wls slope of the windows", "ratio": "the weighted time mean of the ratios"}
+
+
+def field_text(name, values, source, field_mean, location="constant"):
+    return ("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       "
+            f"volScalarField;\n    location    \"{location}\";\n    object      {name};\n}}\n"
+            f"// {source}\n// per cell: {FIELD_MEAN_TEXT[field_mean]} of the bin holding its centre "
+            "(the constant estimate where none), clipped to the bulk model's range\n\n"
+            f"dimensions      [0 0 0 0 0 0 0];\n\ninternalField   {format_scalar_list(values)}\n;\n\n"
+            "boundaryField\n{\n"
+            "    \".*\" { type zeroGradient; }\n    #includeEtc \"caseDicts/setConstraintTypes\"\n}\n")
+
+
+def public(res):
+    """RES without its private entries (keys starting with _: the samples kept for --fields)."""
+    return {k: v for k, v in res.items() if not k.startswith("_")}
+
+
+def check_target(target):
+    """TARGET has constant/ and a readable bulkProperties (or none); returns the latter's tree."""
+    const = os.path.join(target, "constant")
+    if not os.path.isdir(const):
+        raise InputError(f"{target}: no constant/ directory (--target is a case directory; "
+                         "bulkProperties goes into its constant/)")
+    path = bulkprops.path(target)
+    try:
+        tree = bulkprops.read(target)
+    except DictError as e:
+        raise InputError(f"{path}: {e}") from None
+    if "drifts" in tree and not isinstance(tree["drifts"], dict):
+        raise InputError(f"{path}: 'drifts' is an entry, not a block")
+    return tree
+
+
+def window_name(t0, t1):
+    """The directory name of a window in constant/drifts/: its centre, as OpenFOAM names a time
+    (6 significant digits)."""
+    return f"{(t0 + t1) / 2:.6g}"
+
+
+def series_fields(res, centres, lo, hi, field_mean, source, target, span=1):
+    """--per-window: per window inside --windows the drift fields of the samples of the SPAN
+    windows centred on it (fewer at the ends), as (path, text) under
+    TARGET/constant/drifts/<centre>/, and per drift their bookkeeping (counts summed over the
+    windows, each window's own under "windows")."""
+    names = [window_name(t0, t1) for _, t0, t1 in res["_windows"]]
+    if len(set(names)) != len(names):
+        raise InputError(f"{res['h5']} /windows: two windows share the centre "
+                         f"{next(n for n in names if names.count(n) > 1)} s at 6 digits "
+                         "(--per-window names each window's fields by its centre); nothing "
+                         "written")
+    files, summary = [], {}
+    wins, half = res["_windows"], span // 2
+    for k, (name, (i, t0, t1)) in enumerate(zip(names, wins)):
+        pool = [w[0] for w in wins[max(0, k - half):k + half + 1]]
+        pooled = (f", pooled over windows {wins[max(0, k - half)][1]:g}-"
+                  f"{wins[min(len(wins) - 1, k + half)][2]:g} s" if span > 1 else "")
+        for q, f in drift_fields(res, centres, lo, hi, field_mean, window=pool).items():
+            key = DRIFTS[q][0]
+            rel = os.path.join("constant", "drifts", name)
+            files.append((os.path.join(target, rel, key),
+                          field_text(key, f["values"], f"{source}, field mean {field_mean}, "
+                                     f"window {t0:g}-{t1:g} s{pooled}", field_mean, rel)))
+            r = summary.setdefault(key, {"windows": [], "min": f["min"], "max": f["max"],
+                                         "file": os.path.join(target, "constant", "drifts")})
+            r["windows"].append(dict({k: v for k, v in f.items() if k != "values"}, time=name,
+                                     t0=t0, t1=t1))
+            r["min"], r["max"] = min(r["min"], f["min"]), max(r["max"], f["max"])
+    for r in summary.values():
+        for k in ("cells", "from_bins", "fallback_cells", "clipped_cells", "bins_with_value",
+                  "bins"):
+            r[k] = sum(w[k] for w in r["windows"])
+    return files, summary
+
+
+def write_series(target, files):
+    """The window directories of FILES into TARGET/constant/drifts/, replacing the earlier
+    series as a whole (through a directory renamed over it): no window of an earlier calibration
+    stays."""
+    final = os.path.join(target, "constant", "drifts")
+    staging = final + ".new"
+    shutil.rmtree(staging, ignore_errors=True)
+    for p, body in files:
+        p = os.path.join(staging, os.path.relpath(p, final))
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        bulkprops.write_text(p, body)
+    shutil.rmtree(final, ignore_errors=True)
+    os.replace(staging, final)
+
+
+def write_target(target, res, source_arg, json_path=None, fields=False, field_mean="wls",
+                 per_window=False, window_span=1):
+    """Checks TARGET and the drifts against the bulk model's range, then writes
+    TARGET/constant/bulkProperties and the JSON (with FIELDS also constant/lambdaU, lambdaW,
+    lambdaP; with PER_WINDOW instead one set per window, constant/drifts/<centre>/); returns
+    their paths. Nothing is written when a check fails (InputError)."""
+    tree = check_target(target)
+    centres = cell_centres(target) if fields else None
+    path = bulkprops.path(target)
+    try:
+        alpha, alpha_from = _solid_fraction(target, tree, res)
+    except ValueError as e:
+        raise InputError(f"{path}: solidFraction: {e}") from None
+    lo = (DRIFT_DENOMINATOR_MIN - alpha) / (1 - alpha) if alpha < 1 else -DRIFT_MAX
+    drifts = {q: r["value"] for q, r in res["drifts"].items()}
+    for q, v in drifts.items():
+        if not lo <= v <= DRIFT_MAX:
+            raise InputError(f"{path}: drifts.{DRIFTS[q][0]} would be {v:.6g}, outside the bulk "
+                             f"model's allowed range [{lo:.4g}, {DRIFT_MAX:g}] (alpha_s + lambda "
+                             f"alpha_f >= {DRIFT_DENOMINATOR_MIN:g}, alpha_s {alpha:g} from "
+                             f"{alpha_from}); nothing written")
+    s = res["selection"]
+    rel = os.path.relpath(res["h5"], source_arg) if os.path.isdir(source_arg) else res["h5"]
+    where = (os.path.normpath(source_arg) + " " + rel) if os.path.isdir(source_arg) else rel
+    source = (f"calibrate_drifts.py: {where} sha256 {res['sha256']}, estimator "
+              f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s")
+    try:
+        text = bulk_properties_text(path, drifts, source, tree.get("drifts", {}), fields,
+                                    per_window)
+    except DictError as e:
+        raise InputError(f"{path}: {e}") from None
+    json_path = json_path or path + ".calibration.json"
+    files, series = [], []
+    private = res
+    res = dict(public(res), bulk_properties=path, source=source, solid_fraction=alpha,
+               solid_fraction_from=alpha_from, drift_range=[lo, DRIFT_MAX])
+    if per_window:
+        series, res["fields"] = series_fields(private, centres, lo, DRIFT_MAX, field_mean, source,
+                                              target, window_span)
+        res["field_mean"], res["window_span"] = field_mean, window_span
+    elif fields:
+        fs = drift_fields(private, centres, lo, DRIFT_MAX, field_mean)
+        res["fields"] = {}
+        res["field_mean"] = field_mean
+        for q, f in fs.items():
+            name = DRIFTS[q][0]
+            fp = os.path.join(target, "constant", name)
+            files.append((fp, field_text(name, f["values"], f"{source}, field mean {field_mean}",
+                                         field_mean)))
+            res["fields"][name] = dict({k: v for k, v in f.items() if k != "values"}, file=fp)
+    files += [(path, text), (json_path, json.dumps(res, indent=1, sort_keys=True) + "\n")]
+    if series:
+        write_series(target, series)
+    for p, body in files:
+        bulkprops.write_text(p, body)
+    return ([os.path.join(target, "constant", "drifts")] if series else []) + [p for p, _ in files]
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("source", help="CFD-DEM case directory or its mixture.h5")
+    ap.add_argument("--target", help="bulk case: writes its constant/bulkProperties drifts")
+    ap.add_argument("--estimator", default="wls")
+    ap.add_argument("--flowing-factor", type=float, default=0.05,
+                    help="flowing bins: solid speed >= FACTOR sqrt(g H) (default 0.05)")
+    ap.add_argument("--min-solid-fraction", type=float, default=0.1)
+    ap.add_argument("--windows", default=":", help="T0:T1 (s): windows inside it (default all)")
+    ap.add_argument("--weights", default="particles")
+    ap.add_argument("--bootstrap", type=int, default=1000)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--json", help="JSON of the result (default next to bulkProperties)")
+    ap.add_argument("--fields", action="store_true",
+                    help="with --target: also the drift fields constant/lambdaU, lambdaW, lambdaP "
+                    "on the target's mesh, and drifts { fields on; }")
+    ap.add_argument("--per-window", action="store_true",
+                    help="with --fields: one set of fields per extraction window inside "
+                    "--windows, constant/drifts/<centre>/lambdaU, lambdaW, lambdaP, from that "
+                    "window's samples alone, and drifts { timeVarying on; } (the bulk model "
+                    "takes them at its time, docs/bulk_model.md)")
+    ap.add_argument("--window-span", type=int, default=1,
+                    help="--per-window: each window's fields from the samples of the SPAN "
+                    "windows centred on it (odd, >= 1; default 1: its own alone)")
+    ap.add_argument("--field-mean", default="wls",
+                    help="--fields: per bin the wls slope of its windows (wls, default: the "
+                    "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge) "
+                    "or the weighted time mean of the ratios (ratio)")
+    a = ap.parse_args(argv)
+    try:
+        if a.fields and not a.target:
+            raise InputError("--fields: needs --target CASE (the fields go on its mesh)")
+        if a.per_window and not a.fields:
+            raise InputError("--per-window: needs --fields (the windows' fields are drift fields)")
+        if a.window_span < 1 or a.window_span % 2 == 0:
+            raise InputError(f"--window-span {a.window_span}: allowed an odd integer >= 1")
+        if a.window_span > 1 and not a.per_window:
+            raise InputError("--window-span: applies to --per-window only")
+        if a.field_mean not in FIELD_MEAN_TEXT:
+            raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(sorted(FIELD_MEAN_TEXT))}")
+        if a.target:
+            check_target(a.target)  # before the extraction is read: a bad target fails at once
+        res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
+                        parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
+        print(table(res))
+        if a.target:
+            for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,
+                                  a.per_window, a.window_span):
+                print(f"wrote {p}")
+            if a.fields:
+                with open(a.json or bulkprops.path(a.target) + ".calibration.json") as f:
+                    for name, r in json.load(f)["fields"].items():
+                        each = f"{len(r['windows'])} windows, " if "windows" in r else ""
+                        print(f"{name}: {each}{r['cells']} cells, {r['from_bins']} from their bin "
+                              f"({r['bins_with_value']} of {r['bins']} bins have a value), "
+                              f"{r['fallback_cells']} the constant, {r['clipped_cells']} clipped "
+                              f"into the allowed range; values [{r['min']:.4g}, {r['max']:.4g}]")
+        elif a.json:
+            with open(a.json, "w") as f:
+                json.dump(public(res), f, indent=1, sort_keys=True)
+            print(f"wrote {a.json}")
+    except InputError as e:
+        print(f"calibrate_drifts.py: error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
