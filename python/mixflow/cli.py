@@ -27,6 +27,7 @@ VERBS = {
     "liquid-results": ("liquid_results", "post-processing of scripts/liquid_results.sh"),
     "yield-stress-results": ("yield_stress_results", "results/yield_stress/: drag-viscosity closures"),
     "tier-trade": ("tier_trade", "speed against accuracy of one scene across fidelity tiers"),
+    "convergence": ("convergence", "one knob's ladder on one scene, on the same grains (results/convergence)"),
     "knob-trade": ("knob_trade", "cost against accuracy of each fidelity knob around the quick tier"),
     "reproducibility": ("reproducibility", "serial against parallel mixture runs"),
     "initial-pressure-check": ("initial_pressure_check", "the start's pressure in a yield-stress mixture"),

@@ -1,0 +1,136 @@
+"""Convergence ladders: one knob at a time on one scene, every run on the same settled grains
+(results/convergence/README.md).
+
+usage: mixflow convergence --scene HB+P --knob couplingProperties.exchangeEvery
+           --values 25,10,4,2 [--label NAME] [--tier reference] [--set FILE.ENTRY=VALUE ...]
+           [--end 0.5] [--work runs/convergence] [--out results/convergence]
+           [--settled-from WORK] [--report-only]
+
+Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALUE --set ...
+--set KNOB=VALUE --set controlDict.endTime=END`, the first value settling the grains and the
+others starting from its sample (--settled-from; with --settled-from WORK every value starts
+from WORK's sample, e.g. another ladder's first value), so only the knob differs. A value whose run
+finished is not rerun (the ladder resumes). The observables at 0.25, 0.5, 1, 2, 3 s (those the
+runs reach: fronts, the grains' released potential energy, the liquid front, the back-wall
+height; scripts/tier_trade.py) and the CPU seconds of each run go to OUT/summary.json under
+ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
+listed) under ladders.LABEL.SCENE.change.
+"""
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+
+from mixflow import ROOT
+from mixflow import observables as obs
+from mixflow.cli import command
+from mixflow.commands.tier_trade import observables
+
+TIMES = (0.25, 0.5, 1.0, 2.0, 3.0)
+
+
+def run_value(args, value, first_dir):
+    work = os.path.join(args.work, args.label, str(value))
+    cmd = command("suite", "--tier", args.tier, "--scenes", args.scene, "--work", work, "--np",
+                  str(args.np))
+    for s in args.set:
+        cmd += ["--set", s]
+    cmd += ["--set", f"{args.knob}={value}", "--set", f"controlDict.endTime={args.end}"]
+    if first_dir and first_dir != work:
+        cmd += ["--settled-from", first_dir]
+    cost_file = os.path.join(work, "rusage.json")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.time()
+    print("+", " ".join(cmd), flush=True)
+    rc = subprocess.call(cmd)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    spent = {"cpu_s": 0.0, "wall_s": 0.0}
+    if os.path.exists(cost_file):
+        with open(cost_file) as f:
+            spent = json.load(f)
+    spent["cpu_s"] += cpu
+    spent["wall_s"] += time.time() - t0
+    os.makedirs(work, exist_ok=True)
+    with open(cost_file, "w") as f:
+        json.dump(spent, f)
+    return rc, work
+
+
+def collect(args):
+    rows = {}
+    for value in args.values:
+        work = os.path.join(args.work, args.label, str(value))
+        s = obs.Scene(work, args.scene)
+        if not s.done:
+            continue
+        row = observables(s, TIMES)
+        cost_file = os.path.join(work, "rusage.json")
+        if os.path.exists(cost_file):
+            with open(cost_file) as f:
+                row["cpu_s"] = json.load(f)["cpu_s"]
+        rows[str(value)] = obs.clean(row)
+    finest = str(args.values[-1])
+    change = {}
+    if finest in rows:
+        for value, row in rows.items():
+            if value == finest:
+                continue
+            d = {}
+            for t, o in row.items():
+                ref = rows[finest].get(t)
+                if not isinstance(o, dict) or not isinstance(ref, dict):
+                    continue
+                d[t] = {k: o[k] - ref[k] for k in o
+                        if isinstance(o.get(k), float) and isinstance(ref.get(k), float)}
+            change[value] = d
+    return {"knob": args.knob, "set": args.set, "tier": args.tier, "end_s": args.end,
+            "values": rows, "change_against_finest": change, "finest": finest}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--knob", required=True, help="FILE.ENTRY the ladder changes")
+    ap.add_argument("--values", required=True, help="comma-separated, coarsest first")
+    ap.add_argument("--label", help="name of the ladder (default: the knob's entry)")
+    ap.add_argument("--tier", default="reference")
+    ap.add_argument("--set", action="append", default=[], metavar="FILE.ENTRY=VALUE")
+    ap.add_argument("--end", type=float, default=0.5, help="endTime of every run (s)")
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--work", default=os.path.join(ROOT, "runs", "convergence"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results", "convergence"))
+    ap.add_argument("--settled-from", metavar="WORK", help="the settled sample of every value")
+    ap.add_argument("--report-only", action="store_true")
+    args = ap.parse_args(argv)
+    args.values = [v.strip() for v in args.values.split(",") if v.strip()]
+    args.label = args.label or args.knob.split(".")[-1]
+    if not args.report_only:
+        first = args.settled_from or os.path.join(args.work, args.label, args.values[0])
+        for value in args.values:
+            rc, _ = run_value(args, value, first)
+            if rc != 0:
+                print(f"convergence.py: {args.scene} at {args.knob}={value} failed (exit {rc}); "
+                      f"rerun the same command to resume", file=sys.stderr)
+                return rc
+    os.makedirs(args.out, exist_ok=True)
+    summary_file = os.path.join(args.out, "summary.json")
+    summary = {}
+    if os.path.exists(summary_file):
+        with open(summary_file) as f:
+            summary = json.load(f)
+    ladder = collect(args)
+    ladder["command"] = " ".join(["mixflow convergence"] + (argv or sys.argv[1:]))
+    summary.setdefault("ladders", {}).setdefault(args.label, {})[args.scene] = ladder
+    with open(summary_file, "w") as f:
+        json.dump(summary, f, indent=1, sort_keys=True)
+    for value, row in ladder["values"].items():
+        print(value, json.dumps({t: o for t, o in row.items() if t.endswith("s")}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
