@@ -49,8 +49,8 @@ Schema makeSchema() {
       wordParam("dragFluidResponse", c.dragFluidResponse, {"none", "share", "continuity"},
                 "implicit only: the fluid velocity the drag sees within the interval (below)"),
       wordParam("dragCoefficientUpdate", c.dragCoefficientUpdate, {"slip", "exchange"},
-                "implicit only: slip: β follows the grain's slip speed at every DEM step "
-                "(tabulated at the exchange); exchange: β of the exchange's slip held"),
+                "implicit only: slip: β of the grain's slip at every DEM step (the laws "
+                "evaluated with the exchange's fluid sample); exchange: β of the exchange held"),
       wordParam("pressureCoupling", c.pressureCoupling, {"fluid", "mixture"},
                 "mixture: the pressure equation counts the share of the grains' volume the "
                 "implicit drag carries (mixture continuity); fluid: the fluid's alone (below)")

@@ -11,7 +11,8 @@ with what a failure after that write leaves (a half-written later time directory
 0.05 s in the time series), gets endTime 0.15 and is resumed. Checks:
   1. the resume removes the later time directory and the later rows, and finishes;
   2. liquid, granular and exchange series: the same times as A (1e-8 s), strictly increasing, no
-     duplicate (B's own end-time row at 0.05 s, off the granular sampling chain, is cut);
+     duplicate (B's own end-time row at 0.05 s, off the granular sampling chain, is cut); the
+     same field writes as A, the end time's included (cfd/mixflowFoam/RunTime.H);
   3. at 0.15 s B agrees with A: grains' potential energy within 1e-4 J, granular and liquid fronts
      within 1e-4 m, grains' kinetic energy within 1 %, and the resumed run says it kept the
      drag state of the particles' restart (DemLink.h). Measured with the default slip drag
@@ -130,6 +131,18 @@ check(len(ta) == len(tb) and all(abs(x - y) < 1e-8 for x, y in zip(ta, tb))
       and all(x < y for x, y in zip(tb, tb[1:])),
       f"granular series: the uninterrupted run's {len(ta)} times, increasing (resumed: {len(tb)}; "
       "the first part's own end-time row, off the sampling chain, is cut)")
+
+
+
+def field_writes(d):
+    """The time directories of a run (processor0's on several ranks), as times."""
+    base = d if ranks == "1" else os.path.join(d, "processor0")
+    return sorted(float(n) for n in os.listdir(base) if re.fullmatch(r"[0-9.eE+-]+", n))
+
+
+wa, wb = field_writes(a), field_writes(b)
+check(len(wa) == len(wb) and all(abs(x - y) < 1e-8 for x, y in zip(wa, wb)),
+      f"field writes: the uninterrupted run's {wa} (resumed: {wb}), the end time's included")
 
 la, lb = series(a, "postProcessing/liquid/timeSeries.csv")[-1], \
     series(b, "postProcessing/liquid/timeSeries.csv")[-1]
