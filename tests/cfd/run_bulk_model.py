@@ -648,7 +648,10 @@ def drift_field_step(a, work):
     bound = prepared_bound(a, work, "bulk_step_stiff_constants", stiff, None)
     uniform = prepared_bound(a, work, "bulk_step_uniform_fields", FIELD_DRIFTS,
                              {k: f"uniform {v:g}" for k, v in FIELD_DRIFTS.items()})
-    cells = {k: [v] * 50 for k, v in FIELD_DRIFTS.items()}
+    # One value per cell of the case's mesh: channel 0.6 x 0.15 m at 0.005 m, one cell across
+    # (mixflowPrepare refuses a field of another length).
+    n_cells = round(0.6 / 0.005) * round(0.15 / 0.005)
+    cells = {k: [v] * n_cells for k, v in FIELD_DRIFTS.items()}
     cells["lambdaP"][17] = -1.0
     one = prepared_bound(a, work, "bulk_step_one_cell", FIELD_DRIFTS, cells)
     uniform_fields = {k: f"uniform {v:g}" for k, v in FIELD_DRIFTS.items()}
