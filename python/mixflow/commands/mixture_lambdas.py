@@ -7,7 +7,9 @@ usage: mixflow mixture-lambdas --work runs/reference [--scenes W+P,HB+P,B+P]
                                                    [--out results/yield_stress/lambdas.json]
 
 For each scene WORK/<scene> (a finished suite run): system/extractDict is written (grid x 0 to 3 m
-in 0.06 m bins, y 0 to 0.72 m in 0.06 m bins, windows of 0.1 s over the run, fluid from OpenFOAM,
+and y 0 to 0.72 m in the widest bins that are not narrower than the run's fluid cell, cfdDict
+cellSize, as mixflowExtract requires: 0.075 m at the reference tier; windows of 0.1 s over the
+run, fluid from OpenFOAM,
 the liquid density from the scene), `mixflowExtract -case DIR -overwrite` runs, and from
 postProcessing/mixture/mixture.h5:
   - the flowing bins: lambda valid (the extractor's masks) and alpha_s >= 0.1 and |u_s| >= 0.05 m/s
@@ -32,14 +34,25 @@ import h5py
 import numpy as np
 
 from mixflow import ROOT
+from mixflow.foamdict import read_dict
 LABEL = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 
 
+X_RANGE, Y_RANGE = 3.0, 0.72  # m, from the channel's origin
+
+
+def bin_counts(run_dir):
+    """Bins over X_RANGE and Y_RANGE no narrower than the run's fluid cell (cfdDict cellSize)."""
+    cell = float(read_dict(os.path.join(run_dir, "system", "cfdDict"))["cellSize"].split()[0])
+    return int(X_RANGE / cell + 1e-9), int(Y_RANGE / cell + 1e-9)
+
+
 def extract(run_dir, build):
+    nx, ny = bin_counts(run_dir)
     with open(os.path.join(run_dir, "system", "extractDict"), "w") as f:
         f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
                 "// written by mixflow mixture-lambdas\n"
-                "grid { x (0 3 50); y (0 0.72 12); }\n"
+                f"grid {{ x (0 {X_RANGE!r} {nx}); y (0 {Y_RANGE!r} {ny}); }}\n"
                 "windows { start 0; width 0.1; }\n"
                 "fluid { source openfoam; }\n")
     r = subprocess.run([os.path.join(build, "bin", "mixflowExtract"), "-case", run_dir,
@@ -145,7 +158,8 @@ def main():
     build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
     res = {"command": "mixflow mixture-lambdas --work runs/reference",
            "flowing_rule": "lambda valid, alpha_s >= 0.1, |u_s| >= 0.05 m/s",
-           "grid": "x 0-3 m / 0.06 m, y 0-0.72 m / 0.06 m, windows 0.1 s", "scenes": {}}
+           "grid": "x 0-3 m, y 0-0.72 m in bins no narrower than a fluid cell, windows 0.1 s",
+           "scenes": {}}
     for scene in a.scenes.split(","):
         d = os.path.join(os.path.abspath(a.work), scene)
         extract(d, build)
