@@ -114,10 +114,12 @@ Schema makeSchema() {
                       "of settling between checkpoints (0: none): an interrupted settle continues "
                       "from the last to the sample an uninterrupted one gives; Allrun keeps it"),
           wordParam("settle.gravity", s.gravity, {"full", "buoyant"},
-                    "**Open choice** (sample preparation, mixtures): the grains settle dry under g "
-                    "(full), or under their buoyant weight g (1 − ρ_f/ρ_s) (buoyant), so that the "
-                    "saturated column starts with the contact forces it keeps in the liquid; dry "
-                    "scenes: full"),
+                    "**Open choice** (sample preparation, mixtures): the grains settle under "
+                    "their buoyant weight g (1 − ρ_f/ρ_s) (buoyant), so that the saturated column "
+                    "starts with the contact forces it keeps in the liquid, or dry under g (full): "
+                    "in the HB and Bingham liquids such a bed keeps its dry contact loads and a "
+                    "pore suction of 34 % of ρ_f g at rest (coupling.static_bed, "
+                    "results/convergence); dry scenes: full"),
           scalarParam("settle.stiffenFrom", s.stiffenFrom, Range::closed(0.0, 1.0), "",
                       "youngModulusFactor the sample settles at (with its own auto step, "
                       "rayleighFraction × T_R) before it is stiffened to youngModulusFactor; 0: it "

@@ -20,9 +20,10 @@ struct SettleSpec {
   long seed = 12345;
   // s of settling between checkpoints (dem/SettleCheckpoint.h); 0: none
   double checkpointInterval = 0;
-  // full: the grains settle under g; buoyant (mixtures): under g (1 - rho_f / rho_s), the weight
-  // they keep once saturated, so that adding the liquid does not unload their contacts.
-  std::string gravity = "full";
+  // buoyant: a mixture's grains settle under g (1 - rho_f / rho_s), the weight they keep once
+  // saturated; in a yield-stress liquid a bed settled under g keeps its dry contact loads and a
+  // pore suction (coupling.static_bed). full: under g. Dry scenes settle under g either way.
+  std::string gravity = "buoyant";
   // youngModulusFactor the sample settles at before it is stiffened to demDict youngModulusFactor
   // (a stiff settle costs T_R^-1 steps); 0: it settles at youngModulusFactor.
   double stiffenFrom = 0;
