@@ -14,9 +14,14 @@ finished is not rerun (the ladder resumes). The observables at 0.25, 0.5, 1, 2, 
 runs reach: fronts, the grains' released potential energy, the liquid front, the back-wall
 height; scripts/tier_trade.py) and the CPU seconds of each run go to OUT/summary.json under
 ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
-listed) under ladders.LABEL.SCENE.change.
+listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
+within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
+both reach (ladders.LABEL.SCENE.converged); converged.SCENE is true once every ladder of the
+scene has. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
+run_settled_bed.py --json) are gathered into static_bed.
 """
 import argparse
+import glob
 import json
 import os
 import resource
@@ -30,6 +35,24 @@ from mixflow.cli import command
 from mixflow.commands.tier_trade import observables
 
 TIMES = (0.25, 0.5, 1.0, 2.0, 3.0)
+ENERGY_TOL = 0.05  # relative, released energy
+FRONT_TOL = 0.05  # m, granular and liquid fronts
+FRONTS = ("granular_front_m", "liquid_front_m")
+ENERGY = "particle_pe_released_J_per_m"
+
+
+def within(row, ref):
+    """The ladder's convergence rule between two values' observables."""
+    for t, o in ref.items():
+        if not isinstance(o, dict) or not isinstance(row.get(t), dict):
+            continue
+        for k in FRONTS:
+            if isinstance(o.get(k), float) and abs(row[t][k] - o[k]) > FRONT_TOL:
+                return False
+        e, e_ref = row[t].get(ENERGY), o.get(ENERGY)
+        if isinstance(e_ref, float) and abs(e - e_ref) > ENERGY_TOL * abs(e_ref):
+            return False
+    return True
 
 
 def run_value(args, value, first_dir):
@@ -87,8 +110,11 @@ def collect(args):
                 d[t] = {k: o[k] - ref[k] for k in o
                         if isinstance(o.get(k), float) and isinstance(ref.get(k), float)}
             change[value] = d
+    done = [str(v) for v in args.values if str(v) in rows]
+    converged = (len(done) >= 2 and done[-1] == finest and within(rows[done[-2]], rows[finest]))
     return {"knob": args.knob, "set": args.set, "tier": args.tier, "end_s": args.end,
-            "values": rows, "change_against_finest": change, "finest": finest}
+            "values": rows, "change_against_finest": change, "finest": finest,
+            "converged": converged}
 
 
 def main(argv=None):
@@ -125,6 +151,14 @@ def main(argv=None):
     ladder = collect(args)
     ladder["command"] = " ".join(["mixflow convergence"] + (argv or sys.argv[1:]))
     summary.setdefault("ladders", {}).setdefault(args.label, {})[args.scene] = ladder
+    summary["converged"] = {
+        scene: all(lad[scene]["converged"] for lad in summary["ladders"].values() if scene in lad)
+        for scene in {sc for lad in summary["ladders"].values() for sc in lad}}
+    beds = {}
+    for path in sorted(glob.glob(os.path.join(args.out, "static_bed", "*.json"))):
+        with open(path) as f:
+            beds[os.path.splitext(os.path.basename(path))[0]] = json.load(f)
+    summary["static_bed"] = beds
     with open(summary_file, "w") as f:
         json.dump(summary, f, indent=1, sort_keys=True)
     for value, row in ladder["values"].items():
