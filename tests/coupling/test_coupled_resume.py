@@ -26,7 +26,8 @@ with what a failure after that write leaves (a half-written later time directory
      state gets): 1.9e-4 J, 3.1e-5 m, 2.6e-7 m, 0.2 %; the slip closure's coefficient varies
      as 1 / slip in a held column. Without a full LIGGGHTS setup after write_restart (stale
      neighbour lists) A itself changed by 3e-3 J and 15 % at the write.
-  4. resuming a case that wrote no field is refused, naming dem/coupled.resume.state.
+  4. resuming a case that wrote no field is refused, naming dem/coupled.resume.state; resuming on
+     another rank count is refused before anything is removed.
 """
 import csv
 import os
@@ -110,6 +111,12 @@ for rel in ("postProcessing/liquid/timeSeries.csv", "postProcessing/dem/timeSeri
     with open(os.path.join(b, rel), "a") as f:
         f.write("0.0600000,999\n")
 set_end(b, 0.15)
+# Another rank count is refused before anything is removed (the later directory stays).
+other = "2" if ranks == "1" else "1"
+rc, out = run(["bash", "-c", f'. "{root}/scripts/ResumeFunctions" && resumeMixtureCase {other}'], b)
+check(rc == 2 and f"written on {ranks} rank(s), not {other}" in out and os.path.exists(later),
+      f"a resume on {other} rank(s) of a run written on {ranks} is refused, nothing changed "
+      f"(exit {rc})")
 rc, out = resume(b)
 check(rc == 0 and "resume: done" in out, f"resumeMixtureCase finishes (exit {rc})")
 check("resumed with the drag state of the particles' restart" in
