@@ -1,7 +1,10 @@
 #include "CoupledResume.h"
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "Dictionary.h"
 
@@ -11,6 +14,36 @@ namespace fs = std::filesystem;
 
 std::string CoupledResumeState::path(const std::string& caseDir) {
   return (fs::path(caseDir) / "dem" / "coupled.resume.state").string();
+}
+
+std::string CoupledResumeState::previousPath(const std::string& caseDir) {
+  return path(caseDir) + ".previous";
+}
+
+unsigned long posixCksum(const std::string& file, unsigned long long& bytes) {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i << 24;
+      for (int k = 0; k < 8; ++k) c = (c & 0x80000000u) ? (c << 1) ^ 0x04C11DB7u : c << 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::ifstream in(file, std::ios::binary);
+  std::uint32_t crc = 0;
+  bytes = 0;
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    const std::streamsize n = in.gcount();
+    for (std::streamsize i = 0; i < n; ++i)
+      crc = (crc << 8) ^ table[((crc >> 24) ^ static_cast<unsigned char>(buf[i])) & 0xFF];
+    bytes += static_cast<unsigned long long>(n);
+  }
+  for (unsigned long long len = bytes; len; len >>= 8)
+    crc = (crc << 8) ^ table[((crc >> 24) ^ (len & 0xFF)) & 0xFF];
+  return static_cast<unsigned long>(~crc);
 }
 
 CoupledResumeState CoupledResumeState::read(const std::string& caseDir) {
@@ -31,13 +64,31 @@ CoupledResumeState CoupledResumeState::read(const std::string& caseDir) {
   s.lost = d.integer("lost", 0, 2000000000);
   s.profileDone = d.switchOr("profileDone", false);
   if (d.has("slabSplits")) s.slabSplits = d.scalars("slabSplits", Range::closed(0, 1));
-  if (!fs::exists(fs::path(caseDir) / s.restartFile))
-    throw InputError(file + ": entry 'restartFile': " + s.restartFile + " does not exist");
+  if (d.has("restartBytes")) s.restartBytes = d.integer("restartBytes", 0, 9000000000000000000L);
+  if (d.has("restartCrc")) s.restartCrc = d.integer("restartCrc", 0, 4294967295L);
+  const std::string previous = fs::exists(previousPath(caseDir))
+                                   ? "; the write before is intact: mv " + previousPath(caseDir) +
+                                         " " + file + ", then resume again from it"
+                                   : "; no earlier resume point is kept: run it again with Allrun";
+  const std::string restart = (fs::path(caseDir) / s.restartFile).string();
+  if (!fs::exists(restart))
+    throw InputError(file + ": entry 'restartFile': " + s.restartFile + " does not exist" +
+                     previous);
+  if (s.restartBytes > 0) {
+    unsigned long long bytes = 0;
+    const unsigned long crc = posixCksum(restart, bytes);
+    if (bytes != s.restartBytes || crc != s.restartCrc)
+      throw InputError(file + ": entry 'restartFile': " + restart + " is damaged (" +
+                       std::to_string(bytes) + " bytes, cksum " + std::to_string(crc) +
+                       "; written as " + std::to_string(s.restartBytes) + " bytes, cksum " +
+                       std::to_string(s.restartCrc) + ")" + previous);
+  }
   return s;
 }
 
-void CoupledResumeState::write(const std::string& caseDir) const {
+void CoupledResumeState::write(const std::string& caseDir) {
   const std::string file = path(caseDir);
+  restartCrc = posixCksum((fs::path(caseDir) / restartFile).string(), restartBytes);
   {
     std::ofstream f(file + ".tmp");
     f << "// Written by mixflowCoupled with every field write; read by mixflowCoupled -resume.\n"
@@ -48,8 +99,10 @@ void CoupledResumeState::write(const std::string& caseDir) const {
       << (profileDone ? "yes" : "no") << ";\nslabSplits (";
     for (size_t i = 0; i < slabSplits.size(); ++i)
       f << (i ? " " : "") << formatNumber(slabSplits[i], 17);
-    f << ");\n";
+    f << ");\nrestartBytes " << restartBytes << ";   // cksum " << restartFile
+      << " prints these two\nrestartCrc " << restartCrc << ";\n";
   }
+  if (fs::exists(file)) fs::rename(file, previousPath(caseDir));
   fs::rename(file + ".tmp", file);
 }
 

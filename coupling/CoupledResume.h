@@ -28,12 +28,24 @@ struct CoupledResumeState {
   // The DEM's x-slab boundaries at the write (dem/SlabBalance.h): the resumed run's decomposition
   // until its next re-balance, as the uninterrupted run's. Empty: the script's grid.
   std::vector<double> slabSplits;
+  // The restart as written: its size and POSIX cksum CRC (`cksum FILE` prints both), checked
+  // before a resume; 0 / 0: not recorded.
+  unsigned long long restartBytes = 0;
+  unsigned long restartCrc = 0;
 
   static std::string path(const std::string& caseDir);  // <case>/dem/coupled.resume.state
-  // Throws InputError naming the file if it is missing or malformed.
+  // The state of the write before (its restart is the other alternating file, intact while the
+  // latest one is written): offered when the latest restart is damaged.
+  static std::string previousPath(const std::string& caseDir);
+  // Throws InputError naming the file if it is missing or malformed, or if its restart's size or
+  // checksum differs from the recorded ones (then naming the previous state, if any).
   static CoupledResumeState read(const std::string& caseDir);
-  // Written to a temporary file, then renamed (never half-written).
-  void write(const std::string& caseDir) const;
+  // Records the restart's size and checksum, keeps the state before as previousPath, and is
+  // written to a temporary file, then renamed (never half-written).
+  void write(const std::string& caseDir);
 };
+
+// POSIX cksum of a file (CRC-32, polynomial 0x04C11DB7, the length appended), as `cksum` prints.
+unsigned long posixCksum(const std::string& file, unsigned long long& bytes);
 
 }  // namespace mixflow::coupling

@@ -27,7 +27,8 @@ with what a failure after that write leaves (a half-written later time directory
      as 1 / slip in a held column. Without a full LIGGGHTS setup after write_restart (stale
      neighbour lists) A itself changed by 3e-3 J and 15 % at the write.
   4. resuming a case that wrote no field is refused, naming dem/coupled.resume.state; resuming on
-     another rank count is refused before anything is removed.
+     another rank count is refused before anything is removed; the state records its restart's
+     cksum and size, and a truncated restart is refused naming the previous resume point.
 """
 import csv
 import os
@@ -161,6 +162,25 @@ check(d_pe <= 1e-4, f"grains' potential energy at the end: |dPE| = {d_pe:.2e} J 
 check(d_front <= 1e-4, f"granular front: {d_front:.2e} m <= 1e-4")
 check(d_liq <= 1e-4, f"liquid front: {d_liq:.2e} m <= 1e-4")
 check(abs(ke_a - ke_b) <= 0.01 * ke_a, f"grains' kinetic energy: {ke_a:.4g} against {ke_b:.4g} J (1 %)")
+
+# The restart as recorded: `cksum` prints the state's restartCrc and restartBytes.
+st = open(os.path.join(a, "dem", "coupled.resume.state")).read()
+restart = re.search(r'^restartFile\s+"([^"]+)"', st, re.M).group(1)
+crc, nbytes = (re.search(rf"^{k}\s+(\d+);", st, re.M).group(1) for k in ("restartCrc", "restartBytes"))
+got = subprocess.run(["cksum"], stdin=open(os.path.join(a, restart), "rb"), capture_output=True,
+                     text=True).stdout.split()
+check(got == [crc, nbytes], f"the state records the restart's cksum and size ({crc} {nbytes}; "
+      f"cksum prints {' '.join(got)})")
+# A damaged (truncated) restart is refused before anything is removed, naming the previous state.
+damaged = os.path.join(work, "a_damaged")
+shutil.copytree(a, damaged, symlinks=True)
+with open(os.path.join(damaged, restart), "r+b") as f:
+    f.truncate(int(nbytes) // 2)
+n_before = len(os.listdir(damaged))
+rc, out = resume(damaged)
+check(rc == 2 and "is damaged" in out and "coupled.resume.state.previous" in out
+      and len(os.listdir(damaged)) == n_before,
+      f"a truncated restart is refused, the previous resume point named, nothing removed (exit {rc})")
 
 c = make("c", 0.05)
 rc, out = resume(c)
