@@ -93,14 +93,17 @@ TEST(Observables, EnergiesOfKnownParticles) {
   EXPECT_EQ(e.count, 1);
 }
 
-// demDict settle.gravity buoyant: a mixture's grains settle under g (1 - rho_f / rho_s); a dry
-// scene, and `full`, keep LIGGGHTS' g (no command, so older samples keep their fingerprint).
+// demDict settle.gravity buoyant (the default): a mixture's grains settle under g (1 - rho_f /
+// rho_s); a dry scene, and `full`, keep LIGGGHTS' g (no command, so older samples keep their
+// fingerprint).
 TEST(SettleGravity, BuoyantWeightOfAMixtureOnly) {
   Scene s;
   s.particles.density = 2500;
   s.fluidDensity = 1000;
+  s.settle.gravity = "full";
   EXPECT_TRUE(settleGravityCommands(s).empty());
-  s.settle.gravity = "buoyant";
+  s.settle.gravity = Scene().settle.gravity;  // the default
+  EXPECT_EQ(s.settle.gravity, "buoyant");
   const auto c = settleGravityCommands(s);
   ASSERT_EQ(c.size(), 2u);
   EXPECT_EQ(c[0], "unfix gravi");
