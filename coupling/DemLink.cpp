@@ -25,7 +25,8 @@ const char* kStateId = "mixflowDragState";
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
 // over the one before(3) (v_ref: what the fluid step behind U saw), and 1 once a pushImplicit set
 // it (0 in a restart without the state), then the fluid sample of the drag laws (rho, mu, shear
-// rate, eps_f; eps_f 0: beta held).
+// rate, eps_f; eps_f 0: beta held), and the particle's total force(3) and torque(3) of the last
+// step (a restart holds no forces: a resumed run puts them back for its first step).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -40,7 +41,9 @@ enum State {
   kMeanVelocityRef = 24,
   kPushed = 27,
   kSample = 28,
-  kStateSize = 32
+  kLastTotal = 32,
+  kLastTorque = 35,
+  kStateSize = 38
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -95,6 +98,19 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   const bool repeat = step == lastCallStep_;
   lastCallStep_ = step;
   const double tau = static_cast<double>(step - intervalStart_) * dt;  // end of this step
+  if (restoreForces_ && step != intervalStart_) restoreForces_ = false;
+  if (restoreForces_) {
+    // The setup of a resumed run at its restart's step: the force and torque each particle had at
+    // that step in the run that wrote the restart (LIGGGHTS recomputes them from the full-step
+    // velocities; the run went on with those of the half step). This fix is the last force fix,
+    // so f holds every other force and the torque is complete.
+    for (int i = 0; i < nlocal; ++i)
+      for (int k = 0; k < 3; ++k) {
+        fexternal[i][k] = s[i][kLastTotal + k] - a->f[i][k];
+        a->torque[i][k] = s[i][kLastTorque + k];
+      }
+    return;
+  }
   for (int i = 0; i < nlocal; ++i) {
     double* si = s[i];
     const double dtm = dt / a->rmass[i];
@@ -126,6 +142,8 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
       si[kLastDrag + k] = drag;
       if (!repeat && tau > 0) si[kVelocitySum + k] += a->v[i][k];  // not a run's setup
       fexternal[i][k] = drag + fexp;
+      si[kLastTotal + k] = a->f[i][k] + fexternal[i][k];
+      si[kLastTorque + k] = a->torque[i][k];
     }
   }
 }
@@ -192,6 +210,7 @@ bool DemLink::adoptRestoredState() {
   int anyMissing = 0;
   MPI_Allreduce(&missing, &anyMissing, 1, MPI_INT, MPI_MAX, session_.lammps()->world);
   adopted_ = anyMissing == 0;
+  restoreForces_ = adopted_;
   intervalStart_ = session_.step();
   return adopted_;
 }
