@@ -23,6 +23,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "DragLaw.h"
 #include "ForceModel.h"
 
 namespace mixflow::coupling {
@@ -53,28 +54,12 @@ DiFeliceTerms diFelice(double diameter, double rho, double mu, double voidfracti
 
 namespace {
 
-class DiFeliceDrag final : public ForceModel {
+class DiFeliceDrag final : public DragLaw {
  public:
-  DiFeliceDrag(const Dictionary& coeffs, const ForceContext& c) {
-    std::vector<std::string> allowed = DragViscosity::entries();
-    allowed.push_back("divideByVoidfraction");
-    coeffs.allowOnly(allowed);
-    divide_ = coeffs.switchOr("divideByVoidfraction", c.formulation == "B");
-    viscosity_ = DragViscosity::New(coeffs, c.liquid);
-  }
+  DiFeliceDrag(const Dictionary& coeffs, const ForceContext& c) : DragLaw(coeffs, c, {}) {}
   const std::string& name() const override {
     static const std::string n = "DiFeliceDrag";
     return n;
-  }
-  unsigned needs() const override {
-    return kNeedsU | kNeedsRho | kNeedsVoidfraction | viscosity_->needs();
-  }
-  ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const override {
-    ParticleForce out;
-    const double slip = mag(f.U - p.v);
-    const double mu = viscosity_->viscosity(p, f, slip);
-    out.beta = diFelice(2 * p.radius, f.rho, mu, f.voidfraction, slip, divide_).beta;
-    return out;
   }
   std::string describe() const override {
     std::ostringstream s;
@@ -82,13 +67,14 @@ class DiFeliceDrag final : public ForceModel {
          "(Ksl, Us); "
       << (divide_ ? "divided by eps_f (formulation B drag)"
                   : "not divided by eps_f (Eq. 10 as printed, formulation A drag)")
-      << "; " << viscosity_->describe();
+      << "; " << viscosityDescription();
     return s.str();
   }
 
  private:
-  bool divide_ = true;
-  std::unique_ptr<DragViscosity> viscosity_;
+  double beta(double d, double rho, double mu, double voidfraction, double slip) const override {
+    return diFelice(d, rho, mu, voidfraction, slip, divide_).beta;
+  }
 };
 
 }  // namespace

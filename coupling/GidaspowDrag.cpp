@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "DragLaw.h"
 #include "ForceModel.h"
 
 namespace mixflow::coupling {
@@ -41,43 +42,30 @@ double gidaspowBeta(double diameter, double rho, double mu, double voidfraction,
 
 namespace {
 
-class GidaspowDrag final : public ForceModel {
+class GidaspowDrag final : public DragLaw {
  public:
-  GidaspowDrag(const Dictionary& coeffs, const ForceContext& c) {
-    std::vector<std::string> allowed = DragViscosity::entries();
-    allowed.insert(allowed.end(), {"divideByVoidfraction", "switchVoidfraction"});
-    coeffs.allowOnly(allowed);
-    divide_ = coeffs.switchOr("divideByVoidfraction", c.formulation == "B");
+  GidaspowDrag(const Dictionary& coeffs, const ForceContext& c)
+      : DragLaw(coeffs, c, {"switchVoidfraction"}) {
     switch_ = coeffs.scalarOr("switchVoidfraction", 0.8, Range::closed(0.0, 1.0));
-    viscosity_ = DragViscosity::New(coeffs, c.liquid);
   }
   const std::string& name() const override {
     static const std::string n = "GidaspowDrag";
     return n;
-  }
-  unsigned needs() const override {
-    return kNeedsU | kNeedsRho | kNeedsVoidfraction | viscosity_->needs();
-  }
-  ParticleForce force(const ParticleState& p, const FluidAtParticle& f) const override {
-    ParticleForce out;
-    const double slip = mag(f.U - p.v);
-    const double mu = viscosity_->viscosity(p, f, slip);
-    out.beta = gidaspowBeta(2 * p.radius, f.rho, mu, f.voidfraction, slip, switch_, divide_);
-    return out;
   }
   std::string describe() const override {
     std::ostringstream s;
     s << "GidaspowDrag: Ergun below eps_f = " << switch_
       << ", Wen-Yu above; implicit in the fluid (Ksl, Us); "
       << (divide_ ? "divided by eps_f (formulation B drag)" : "formulation A drag") << "; "
-      << viscosity_->describe();
+      << viscosityDescription();
     return s.str();
   }
 
  private:
-  bool divide_ = true;
+  double beta(double d, double rho, double mu, double voidfraction, double slip) const override {
+    return gidaspowBeta(d, rho, mu, voidfraction, slip, switch_, divide_);
+  }
   double switch_ = 0.8;
-  std::unique_ptr<DragViscosity> viscosity_;
 };
 
 }  // namespace
