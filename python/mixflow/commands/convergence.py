@@ -17,7 +17,8 @@ ladders.LABEL.SCENE.VALUE, with each observable's change against the finest valu
 listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
 both reach (ladders.LABEL.SCENE.converged); converged.SCENE is true once every ladder of the
-scene has. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
+scene has, and truth_tier stays null until then; packing lists each ladder's sample solid
+fraction against the target. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
 run_settled_bed.py --json) are gathered into static_bed.
 """
 import argparse
@@ -95,6 +96,12 @@ def collect(args):
         if os.path.exists(cost_file):
             with open(cost_file) as f:
                 row["cpu_s"] = json.load(f)["cpu_s"]
+        dem_summary = os.path.join(s.dir, "postProcessing", "dem", "summary.json")
+        if os.path.exists(dem_summary):
+            with open(dem_summary) as f:
+                d = json.load(f)
+            row["sample_solid_fraction"] = d.get("settled", {}).get("sample_solid_fraction")
+            row["target_solid_fraction"] = d.get("sample", {}).get("target_solid_fraction")
         rows[str(value)] = obs.clean(row)
     finest = str(args.values[-1])
     change = {}
@@ -159,6 +166,16 @@ def main(argv=None):
         with open(path) as f:
             beds[os.path.splitext(os.path.basename(path))[0]] = json.load(f)
     summary["static_bed"] = beds
+    # The packing each ladder ran at (its sample's solid fraction against the target).
+    summary["packing"] = {
+        "target": next((r.get("target_solid_fraction") for lad in summary["ladders"].values()
+                        for sc in lad.values() for r in sc["values"].values()), None),
+        "achieved": {f"{label}/{scene}": sorted({r.get("sample_solid_fraction")
+                                                 for r in sc["values"].values()} - {None})
+                     for label, lad in summary["ladders"].items() for scene, sc in lad.items()}}
+    # The cheapest setting every ladder of every scene accepts; none until they all converge.
+    summary["truth_tier"] = None if not all(summary["converged"].values()) else \
+        summary.get("truth_tier")
     with open(summary_file, "w") as f:
         json.dump(summary, f, indent=1, sort_keys=True)
     for value, row in ladder["values"].items():
