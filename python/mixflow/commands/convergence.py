@@ -25,15 +25,13 @@ import argparse
 import glob
 import json
 import os
-import resource
-import subprocess
 import sys
-import time
 
 from mixflow import ROOT
 from mixflow import observables as obs
 from mixflow.cli import command
 from mixflow.commands.tier_trade import observables
+from mixflow.timing import recorded_run
 
 TIMES = (0.25, 0.5, 1.0, 2.0, 3.0)
 ENERGY_TOL = 0.05  # relative, released energy
@@ -65,23 +63,8 @@ def run_value(args, value, first_dir):
     cmd += ["--set", f"{args.knob}={value}", "--set", f"controlDict.endTime={args.end}"]
     if first_dir and first_dir != work:
         cmd += ["--settled-from", first_dir]
-    cost_file = os.path.join(work, "rusage.json")
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.time()
     print("+", " ".join(cmd), flush=True)
-    rc = subprocess.call(cmd)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    spent = {"cpu_s": 0.0, "wall_s": 0.0}
-    if os.path.exists(cost_file):
-        with open(cost_file) as f:
-            spent = json.load(f)
-    spent["cpu_s"] += cpu
-    spent["wall_s"] += time.time() - t0
-    os.makedirs(work, exist_ok=True)
-    with open(cost_file, "w") as f:
-        json.dump(spent, f)
-    return rc, work
+    return recorded_run(cmd, work), work
 
 
 def collect(args):

@@ -23,13 +23,13 @@ import copy
 import json
 import os
 import resource
-import subprocess
 import time
 
 from mixflow import ROOT
 from mixflow.cli import command
 from mixflow import observables as obs
 from mixflow.commands.tier_trade import observables
+from mixflow.timing import recorded_run
 
 TIMES = (0.25, 0.5, 1.0, 1.5)
 SCENES = {"P": "P", "W+P": "WP"}  # scene -> tag suffix of its run directories
@@ -134,22 +134,9 @@ def run_one(knob, value, scene, runs):
         return
     cmd = ["nice", "-n", "15"] + suite_cmd(knob, value, scene, work)
     print("running:", " ".join(cmd), flush=True)
-    r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.time()
     with open(os.path.join(runs, tag(knob, value, scene) + ".log"), "a") as log:
-        rc = subprocess.call(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "rusage.json")
-    rec = read_json(path) or {"cpu_s": 0.0, "user_s": 0.0, "sys_s": 0.0, "wall_s": 0.0,
-                              "attempts": 0}
-    rec["user_s"] += r1.ru_utime - r0.ru_utime
-    rec["sys_s"] += r1.ru_stime - r0.ru_stime
-    rec["cpu_s"] = rec["user_s"] + rec["sys_s"]
-    rec["wall_s"] += time.time() - t0
-    rec["attempts"] += 1
-    rec["cmd"], rec["rc"] = suite_cmd(knob, value, scene, work), rc
-    with open(path, "w") as f:
-        json.dump(rec, f, indent=1)
+        rc = recorded_run(cmd, work, cwd=ROOT, stdout=log)
+    rec = read_json(os.path.join(work, "rusage.json"))
     print(f"  rc {rc}, cpu {rec['cpu_s']:.0f} s, wall {rec['wall_s']:.0f} s", flush=True)
 
 
