@@ -44,7 +44,7 @@ struct CouplingProperties {
   // within the interval as the fluid step's continuity will make it (DemLink.h).
   std::string dragFluidResponse = "none";
   // implicit only. slip: the drag coefficient follows the grain's slip speed at every DEM step
-  // (the exchange tabulates the laws against the slip, SlipTable.h); exchange: beta of the
+  // (the drag laws evaluated with the exchange's fluid sample, DemLink.h); exchange: beta of the
   // exchange's slip is held over the interval, which freezes a plastic (yield-stress) drag at
   // the slip the last interval ended with.
   std::string dragCoefficientUpdate = "slip";

@@ -163,7 +163,7 @@ std::unique_ptr<DragScheme> DragScheme::New(const CouplingProperties& props, dou
     scheme = std::make_unique<MixtureDrag>(interval);
   else
     scheme = std::make_unique<ImplicitDrag>(interval);
-  scheme->followsSlip_ = props.dragCoefficientUpdate == "slip";
+  scheme->followsSlip_ = scheme->kind_ != Kind::held && props.dragCoefficientUpdate == "slip";
   return scheme;
 }
 
@@ -191,7 +191,7 @@ void DragScheme::centreForce(const std::vector<std::unique_ptr<ForceModel>>& mod
     d.force.beta += fms[m].beta;
     d.force.explicitForce += fms[m].explicitForce;
   }
-  if (followsSlip_ && kind_ != Kind::held) d.sample = DragFluidSample::of(f);
+  if (followsSlip_) d.sample = DragFluidSample::of(f);
   const double s = scale(p, f, c, d.force, counts);
   for (size_t m = 0; m < models.size(); ++m) {
     fms[m].beta *= s;

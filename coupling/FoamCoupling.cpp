@@ -23,6 +23,7 @@
 #include "CouplingProperties.h"
 #include "DemDict.h"
 #include "DemLink.h"
+#include "DragLaw.h"
 #include "DragScheme.h"
 #include "FoamCellLocator.H"
 #include "ForceModel.h"
@@ -149,12 +150,17 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   link_ = std::move(dem.link);
   exchangeInterval_ = dem.exchangeInterval;
   drag_ = DragScheme::New(*props_, exchangeInterval_);
-  if (drag_->followsSlip())
-    link_->setDragLaw([this](const ParticleState& p, const FluidAtParticle& f) {
+  if (drag_->followsSlip()) {
+    // Only the drag laws give beta; the per-step callback skips the explicit forces' models.
+    std::vector<const DragLaw*> laws;
+    for (const auto& m : forceModels_)
+      if (const auto* law = dynamic_cast<const DragLaw*>(m.get())) laws.push_back(law);
+    link_->setDragLaw([laws](const ParticleState& p, const FluidAtParticle& f) {
       double beta = 0;
-      for (const auto& m : forceModels_) beta += m->force(p, f).beta;
+      for (const DragLaw* law : laws) beta += law->force(p, f).beta;
       return beta;
     });
+  }
 
   auto locator = std::make_unique<FoamCellLocator>(mesh_);
   double zLo = 0, zHi = 0;
