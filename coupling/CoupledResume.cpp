@@ -66,24 +66,26 @@ CoupledResumeState CoupledResumeState::read(const std::string& caseDir) {
   if (d.has("slabSplits")) s.slabSplits = d.scalars("slabSplits", Range::closed(0, 1));
   if (d.has("restartBytes")) s.restartBytes = d.integer("restartBytes", 0, 9000000000000000000L);
   if (d.has("restartCrc")) s.restartCrc = d.integer("restartCrc", 0, 4294967295L);
+  return s;
+}
+
+void CoupledResumeState::verifyRestart(const std::string& caseDir) const {
+  const std::string file = path(caseDir);
   const std::string previous = fs::exists(previousPath(caseDir))
                                    ? "; the write before is intact: mv " + previousPath(caseDir) +
                                          " " + file + ", then resume again from it"
                                    : "; no earlier resume point is kept: run it again with Allrun";
-  const std::string restart = (fs::path(caseDir) / s.restartFile).string();
+  const std::string restart = (fs::path(caseDir) / restartFile).string();
   if (!fs::exists(restart))
-    throw InputError(file + ": entry 'restartFile': " + s.restartFile + " does not exist" +
-                     previous);
-  if (s.restartBytes > 0) {
-    unsigned long long bytes = 0;
-    const unsigned long crc = posixCksum(restart, bytes);
-    if (bytes != s.restartBytes || crc != s.restartCrc)
-      throw InputError(file + ": entry 'restartFile': " + restart + " is damaged (" +
-                       std::to_string(bytes) + " bytes, cksum " + std::to_string(crc) +
-                       "; written as " + std::to_string(s.restartBytes) + " bytes, cksum " +
-                       std::to_string(s.restartCrc) + ")" + previous);
-  }
-  return s;
+    throw InputError(file + ": entry 'restartFile': " + restartFile + " does not exist" + previous);
+  if (restartBytes == 0) return;  // a state that recorded no cksum
+  unsigned long long bytes = 0;
+  const unsigned long crc = posixCksum(restart, bytes);
+  if (bytes != restartBytes || crc != restartCrc)
+    throw InputError(file + ": entry 'restartFile': " + restart + " is damaged (" +
+                     std::to_string(bytes) + " bytes, cksum " + std::to_string(crc) +
+                     "; written as " + std::to_string(restartBytes) + " bytes, cksum " +
+                     std::to_string(restartCrc) + ")" + previous);
 }
 
 void CoupledResumeState::write(const std::string& caseDir) {

@@ -37,9 +37,11 @@ struct CoupledResumeState {
   // The state of the write before (its restart is the other alternating file, intact while the
   // latest one is written): offered when the latest restart is damaged.
   static std::string previousPath(const std::string& caseDir);
-  // Throws InputError naming the file if it is missing or malformed, or if its restart's size or
-  // checksum differs from the recorded ones (then naming the previous state, if any).
+  // Throws InputError naming the file if it is missing or malformed.
   static CoupledResumeState read(const std::string& caseDir);
+  // Before the particles are read: throws InputError if the restart is missing or its size or
+  // checksum differs from the recorded ones, naming the previous state if one is kept.
+  void verifyRestart(const std::string& caseDir) const;
   // Records the restart's size and checksum, keeps the state before as previousPath, and is
   // written to a temporary file, then renamed (never half-written).
   void write(const std::string& caseDir);

@@ -102,6 +102,7 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
   if (resume) {
     try {
       const CoupledResumeState st = CoupledResumeState::read(caseDir);
+      st.verifyRestart(caseDir);
       const double t = runTime.value();
       // The time directory's name is rounded (OpenFOAM's timePrecision): within a thousandth of
       // a step is the same write.
