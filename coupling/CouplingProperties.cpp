@@ -51,6 +51,10 @@ Schema makeSchema() {
       wordParam("dragCoefficientUpdate", c.dragCoefficientUpdate, {"slip", "exchange"},
                 "implicit only: slip: β of the grain's slip at every DEM step (the laws "
                 "evaluated with the exchange's fluid sample); exchange: β of the exchange held"),
+      wordParam("implicitDragDefect", c.implicitDragDefect, {"returned", "kept"},
+                "implicit only: the fluid step's implicit drag β_T (U_held − U_new), which no "
+                "grain received, returned in the next step's explicit source (the fluid gets the "
+                "grains' drag impulse exactly) or kept (below, \"Implicit drag defect\")"),
       wordParam("pressureCoupling", c.pressureCoupling, {"fluid", "mixture"},
                 "mixture: the pressure equation counts the share of the grains' volume the "
                 "implicit drag carries (mixture continuity); fluid: the fluid's alone (below)")
@@ -102,6 +106,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.dragIntegration = sc.word(d, "dragIntegration");
   p.dragFluidResponse = sc.word(d, "dragFluidResponse");
   p.dragCoefficientUpdate = sc.word(d, "dragCoefficientUpdate");
+  p.implicitDragDefect = sc.word(d, "implicitDragDefect");
   // Default: mixture wherever it applies (implicit drag without a dragFluidResponse mode).
   const bool mixtureApplies = p.dragIntegration == "implicit" && p.dragFluidResponse == "none";
   p.pressureCoupling = d.has("pressureCoupling") ? sc.word(d, "pressureCoupling")

@@ -48,6 +48,13 @@ struct CouplingProperties {
   // exchange's slip is held over the interval, which freezes a plastic (yield-stress) drag at
   // the slip the last interval ended with.
   std::string dragCoefficientUpdate = "slip";
+  // implicit only. The fluid step takes the drag as beta_T (U_held - U_new) - impulse / T, exact
+  // at U_new = U_held; its part beta_T (U_held - U_new) reached no grain (the grains meet U_new
+  // in the next interval, whose impulse the fluid gets again). returned: that part of each cell,
+  // Ksl (U_new - U_held), is added to the next step's explicit source, so that over the run the
+  // fluid gets exactly the grains' drag impulse; kept: not, and a slaved grain's inertia is added
+  // to the fluid's once more at every step (a mixture inertia up to m_f + 2 m_p).
+  std::string implicitDragDefect = "returned";
   // fluid: the fluid step's continuity sees the grains' displacement over the DEM interval just
   // run, and the next interval's drag uses the fluid as it was before that step.
   // mixture (implicit drag, dragFluidResponse none): the next interval's drag uses the fluid

@@ -150,6 +150,12 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   link_ = std::move(dem.link);
   exchangeInterval_ = dem.exchangeInterval;
   drag_ = DragScheme::New(*props_, exchangeInterval_);
+  if (drag_->integration() == DemLink::DragIntegration::implicit &&
+      props_->implicitDragDefect == "returned")
+    dragDefect_ = std::make_unique<Foam::volVectorField>(
+        Foam::IOobject("dragDefect", runTime.timeName(), mesh_, Foam::IOobject::READ_IF_PRESENT,
+                       Foam::IOobject::AUTO_WRITE),
+        mesh_, Foam::dimensionedVector(fSource_.dimensions(), Foam::Zero));
   if (drag_->followsSlip()) {
     // Only the drag laws give beta; the per-step callback skips the explicit forces' models.
     std::vector<const DragLaw*> laws;
@@ -379,7 +385,8 @@ void FoamCoupling::gather(Exchange& x) {
 
 // The reaction to the ranks holding the particles' parts, and the fluid's fields.
 void FoamCoupling::depositSources(Exchange& x) {
-  std::vector<Vec3> Ucell(mesh_.nCells());
+  std::vector<Vec3>& Ucell = Udeposit_;
+  Ucell.resize(mesh_.nCells());
   forAll(U_, c) { Ucell[c] = toVec(U_[c]); }
   for (const ReactionRecord& r : router_->toParts(x.owned)) {
     const MeshParticle& m = x.here.at(static_cast<size_t>(r.workIndex));
@@ -405,6 +412,18 @@ void FoamCoupling::depositSources(Exchange& x) {
     fs[c] = toFoam(aF[c]);
     psi[c] = aPsi[c];
   }
+  if (dragDefect_) fs += dragDefect_->primitiveField();
+}
+
+// The fluid step just taken saw the drag Ksl (Us - U_new) + fSource, which is the grains'
+// impulse over the interval only at U_new = U_held (the cells' U at the deposit): the rest,
+// -Ksl (U_new - U_held), is the grains' response to the new fluid velocity, which the next
+// interval's impulse brings again. It goes back to the fluid at the next deposit.
+void FoamCoupling::recordDragDefect() {
+  if (!dragDefect_ || Udeposit_.size() != static_cast<size_t>(mesh_.nCells())) return;
+  Foam::vectorField& d = dragDefect_->primitiveFieldRef();
+  forAll(d, c) { d[c] = Ksl_[c] * (U_[c] - toFoam(Udeposit_[c])); }
+  dragDefect_->correctBoundaryConditions();
 }
 
 // The fluid's acceleration over its last step by its own forces (pressure, viscous stress,

@@ -140,6 +140,7 @@ int runCoupled(int argc, char* argv[]) {
 #include "fluidStep.H"
     // clang-format on
     coupling.checkFluid();
+    coupling.recordDragDefect();
     coupling.resampleFluidVelocity();  // pressureCoupling mixture: the next interval's U
 
     runTime.write();

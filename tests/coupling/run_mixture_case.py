@@ -117,10 +117,16 @@ def main():
                                            "sceneProperties"))
         with open(scene_path, "w") as f:
             f.write(text[:m.start()] + src.group(0) + text[m.end():])
-    with open(os.path.join(case, "constant", "couplingProperties"), "a") as f:
-        for kv in a.couple:
-            key, value = kv.split("=", 1)
-            f.write(f"{key} {value};   // test option\n")
+    coupling = os.path.join(case, "constant", "couplingProperties")
+    given = foamdict.read_dict(coupling)
+    for kv in a.couple:  # an entry the case has is changed, another one added
+        key, value = kv.split("=", 1)
+        if key in given:
+            fc.set_entry(coupling, key, value)
+        else:
+            with open(coupling, "a") as f:
+                f.write(f"{key} {value};   // test option\n")
+    with open(coupling, "a") as f:
         if a.drag_viscosity:
             f.write(f"DiFeliceDragCoeffs {{ dragViscosity {a.drag_viscosity}; }}   // test option\n")
     env = dict(os.environ, MIXFLOW_ROOT=a.root, PATH=a.bindir + os.pathsep + os.environ["PATH"])
