@@ -55,6 +55,10 @@ Schema makeSchema() {
                 "implicit only: the fluid step's implicit drag β_T (U_held − U_new), which no "
                 "grain received, returned in the next step's explicit source (the fluid gets the "
                 "grains' drag impulse exactly) or kept (below, \"Implicit drag defect\")"),
+      wordParam("dragFluidVelocity", c.dragFluidVelocity, {"held", "extrapolated"},
+                "pressureCoupling mixture only: the fluid velocity the drag sees over the "
+                "interval, held at the fluid step's or going on at that step's rate of change "
+                "(below, \"Fluid velocity seen by the drag\")"),
       wordParam("pressureCoupling", c.pressureCoupling, {"fluid", "mixture"},
                 "mixture: the pressure equation counts the share of the grains' volume the "
                 "implicit drag carries (mixture continuity); fluid: the fluid's alone (below)")
@@ -107,6 +111,7 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   p.dragFluidResponse = sc.word(d, "dragFluidResponse");
   p.dragCoefficientUpdate = sc.word(d, "dragCoefficientUpdate");
   p.implicitDragDefect = sc.word(d, "implicitDragDefect");
+  p.dragFluidVelocity = sc.word(d, "dragFluidVelocity");
   // Default: mixture wherever it applies (implicit drag without a dragFluidResponse mode).
   const bool mixtureApplies = p.dragIntegration == "implicit" && p.dragFluidResponse == "none";
   p.pressureCoupling = d.has("pressureCoupling") ? sc.word(d, "pressureCoupling")
@@ -114,6 +119,10 @@ CouplingProperties CouplingProperties::read(const std::string& file) {
   if (p.pressureCoupling == "mixture" && !mixtureApplies)
     d.fail("pressureCoupling",
            "'mixture' needs dragIntegration implicit and dragFluidResponse none");
+  if (p.dragFluidVelocity == "extrapolated" && p.pressureCoupling != "mixture")
+    d.fail("dragFluidVelocity",
+           "'extrapolated' needs pressureCoupling mixture (the fluid "
+           "velocity sampled again after the fluid step)");
   p.dragRelaxationLimit = sc.scalar(d, "dragRelaxationLimit");
   p.dragCounterflowLimit = sc.scalar(d, "dragCounterflowLimit");
   p.maxVelocity = sc.scalar(d, "maxVelocity");

@@ -55,6 +55,13 @@ struct CouplingProperties {
   // fluid gets exactly the grains' drag impulse; kept: not, and a slaved grain's inertia is added
   // to the fluid's once more at every step (a mixture inertia up to m_f + 2 m_p).
   std::string implicitDragDefect = "returned";
+  // pressureCoupling mixture only. held: the drag sees the fluid velocity sampled after the fluid
+  // step, held over the interval; extrapolated: that velocity going on changing at the rate of
+  // the step just taken, U + tau (U - U_before) / T, so the fluid the drag sees lags the fluid
+  // step's by O(T^2) instead of O(T). A plastic drag (yield-stress liquids) meets any slip above
+  // its regularisation's (~1e-5 m/s) with the full yield force, so a lag of the seen velocity by
+  // a T holds the grains back whatever T is practical.
+  std::string dragFluidVelocity = "held";
   // fluid: the fluid step's continuity sees the grains' displacement over the DEM interval just
   // run, and the next interval's drag uses the fluid as it was before that step.
   // mixture (implicit drag, dragFluidResponse none): the next interval's drag uses the fluid

@@ -230,7 +230,8 @@ bool DemLink::keepRestoredState() {
   return true;
 }
 
-void DemLink::setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has) {
+void DemLink::setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has,
+                               double step) {
   if (mode_ != DragIntegration::implicit)
     throw std::logic_error("coupling: setFluidVelocity needs dragIntegration implicit");
   if (session_.step() != intervalStart_)
@@ -241,7 +242,10 @@ void DemLink::setFluidVelocity(const std::vector<Vec3>& U, const std::vector<cha
     throw std::runtime_error("coupling: velocity count differs from the local particle count");
   for (int i = 0; i < n; ++i)
     if (has[i])
-      for (int k = 0; k < 3; ++k) s[i][kU + k] = U[i][k];
+      for (int k = 0; k < 3; ++k) {
+        if (step > 0) s[i][kAccel + k] = (U[i][k] - s[i][kU + k]) / step;
+        s[i][kU + k] = U[i][k];
+      }
 }
 
 bool DemLink::periodicZ(double& lo, double& hi) const {

@@ -67,8 +67,10 @@ class DemLink {
   // nothing changed, if none was adopted.
   bool keepRestoredState();
   // implicit, after pushImplicit and before the interval runs: replaces the fluid velocity U of
-  // local particle i (same order as the last pull) where has[i].
-  void setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has);
+  // local particle i (same order as the last pull) where has[i]. step > 0: the drag sees the fluid
+  // velocity go on changing as it did over the fluid step just taken, U + tau (U - U_held) / step.
+  void setFluidVelocity(const std::vector<Vec3>& U, const std::vector<char>& has,
+                        double step = 0.0);
 
   // dragCoefficientUpdate slip: the drag coefficient of a particle at a fluid sample (the sum of
   // the force models' beta), which the implicit drag evaluates at every DEM step.

@@ -473,7 +473,8 @@ void FoamCoupling::resampleFluidVelocity() {
         Unew[i] = r.U;
         has[i] = 1;
       }
-    link_->setFluidVelocity(Unew, has);
+    link_->setFluidVelocity(Unew, has,
+                            props_->dragFluidVelocity == "extrapolated" ? exchangeInterval_ : 0.0);
   });
 }
 

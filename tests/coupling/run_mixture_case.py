@@ -90,6 +90,8 @@ def main():
     ap.add_argument("--couple", action="append", default=[], metavar="ENTRY=VALUE",
                     help="a couplingProperties entry of the run (repeatable)")
     ap.add_argument("--drag-viscosity", help="DiFeliceDragCoeffs dragViscosity of the run")
+    ap.add_argument("--cfd", action="append", default=[], metavar="ENTRY=VALUE",
+                    help="system/cfdDict entry of the run (added, or changed if the case has it)")
     ap.add_argument("--grain-energy-max", type=float,
                     help="J: bound of max_t [KE_p(t) - (PE_p(0) - PE_p(t))]")
     ap.add_argument("--divergence", action="store_true",
@@ -117,15 +119,19 @@ def main():
                                            "sceneProperties"))
         with open(scene_path, "w") as f:
             f.write(text[:m.start()] + src.group(0) + text[m.end():])
+    def set_entries(path, entries):  # an entry the case has is changed, another one added
+        given = foamdict.read_dict(path)
+        for kv in entries:
+            key, value = kv.split("=", 1)
+            if key in given:
+                fc.set_entry(path, key, value)
+            else:
+                with open(path, "a") as f:
+                    end = "" if value.lstrip().startswith("{") else ";"  # a block has no ';'
+                    f.write(f"{key} {value}{end}   // test option\n")
     coupling = os.path.join(case, "constant", "couplingProperties")
-    given = foamdict.read_dict(coupling)
-    for kv in a.couple:  # an entry the case has is changed, another one added
-        key, value = kv.split("=", 1)
-        if key in given:
-            fc.set_entry(coupling, key, value)
-        else:
-            with open(coupling, "a") as f:
-                f.write(f"{key} {value};   // test option\n")
+    set_entries(coupling, a.couple)
+    set_entries(os.path.join(case, "system", "cfdDict"), a.cfd)
     with open(coupling, "a") as f:
         if a.drag_viscosity:
             f.write(f"DiFeliceDragCoeffs {{ dragViscosity {a.drag_viscosity}; }}   // test option\n")
