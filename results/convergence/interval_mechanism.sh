@@ -4,7 +4,7 @@
 # exchangeEvery, one coupling or liquid choice changed per variant. Writes WORK/<variant>/<N>/ and
 # results/convergence/interval_mechanism.csv (energy released by the grains, granular front, their
 # kinetic energy at 0.5 s). Usage: interval_mechanism.sh [WORK] (default runs/interval_mechanism).
-# About 25 min serially on this machine's 2 cores.
+# About 35 min serially on this machine's 2 cores.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/interval_mechanism}")
@@ -41,6 +41,9 @@ for n in 25 6 2 1; do
   run extrapolated HB+P $n --couple dragFluidVelocity=extrapolated
   run share HB+P $n --couple dragFluidResponse=share
 done
+# The Bingham mixture (B+P's liquid: yield stress 2.1 Pa, 4 Pa s) with both schemes.
+for n in 25 6 2 1; do run bp_held B+P $n; done
+for n in 25 6 2 1; do run bp_share B+P $n --couple dragFluidResponse=share; done
 /usr/bin/python3 - "$work" "$root/results/convergence/interval_mechanism.csv" <<'END'
 import csv, glob, os, sys
 work, out = sys.argv[1:]
