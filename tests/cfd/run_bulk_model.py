@@ -43,7 +43,8 @@ rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) fillin
               pressure at the last write: p.fluid of every mixture cell against rho_f g (h - y)
               (the default pore-pressure ratio 0) within 2 %, and, in a third run of the
               Newtonian layer with drifts.porePressureRatio 0.5, against rho_f g (h - y) + 0.5
-              alpha_s (rho_s - rho_f) g (h - y).
+              alpha_s (rho_s - rho_f) g (h - y); control: lambdaP 2.75 (the total-pressure
+              convention's value at rest) must miss rho_f g (h - y) by more than 50 %.
 incline       steady uniform flow down a 10 degree incline: the newtonian mixture (nu = alpha_s nu_s
               + alpha_f nu_f = 1.2004e-3 m2/s) filling a layer h = 0.01 m deep on a no-slip bed,
               periodic in x (cyclic, 4 cells along 0.01 m), a stress-free top (slip wall: the
@@ -748,13 +749,24 @@ def rest(a, work):
                        f"{', '.join(times)} s: {', '.join(f'{u:.1e}' for u in umax)} m/s "
                        f"(<= {bound:g})")
         ok &= pore_pressure_at_rest(case, times[-1], depth, chi, label)
+    # Control: the paper's closure at lambda_p 2.75, the value the total-pressure convention
+    # extracts from a saturated column at rest (the lower end of W&P's 2.75-4.1), puts
+    # P_f = rho_f lambda_p / Lambda_p p_m = 1.62 rho_f g (h - y): not the liquid at rest.
+    case = prepared(a, work, "bulk_rest_lambda_p_control",
+                    NEWTONIAN_SOLID + "drifts { pressure lambdaP; lambdaP 2.75; }\n", 0.5, 0.5,
+                    geometry, CFD + "pressureTolerance 1e-12;\n")
+    close_patches(case, ["outlet"])
+    flat_layer(case, depth)
+    run_bulk(a, case)
+    worst = pore_pressure_error(case, field_times(case)[-1], depth, 0.0)[0]
+    ok &= lc.check(worst > 0.5, f"control: lambdaP 2.75 at rest gives p.fluid {100 * worst:.1f} % "
+                   "off rho_f g (h - y) (> 50 %: expected 2.75 / (0.6 + 2.75 0.4) - 1 = 62 %)")
     return ok
 
 
-def pore_pressure_at_rest(case, t, depth, chi, label):
-    """p.fluid of the mixture cells at time T against rho_f g (h - y) + chi alpha_s (rho_s -
-    rho_f) g (h - y), relative per cell, within 2 %: the mixture pressure p_m = (1 - rho_air /
-    rho*) g (h - y) of a layer at rest (the air's share, 5e-4 here, is inside the tolerance)."""
+def pore_pressure_error(case, t, depth, chi):
+    """(largest |p.fluid / want - 1| over the mixture cells at time T, their count), want = (rho_f
+    + chi alpha_s (rho_s - rho_f)) g (h - y) at the cell centre."""
     nx, ny = mesh_size(case)
     dy = float(re.search(r"cellSize ([^;]+);", CFD).group(1))
     alpha_s, rho_f = 0.6, 1000.0  # GEOMETRY's sample.solidFraction, WATER's density
@@ -768,6 +780,14 @@ def pore_pressure_at_rest(case, t, depth, chi, label):
         for i in range(nx):
             worst = max(worst, abs(pf[i + nx * j] / want - 1))
             cells += 1
+    return worst, cells
+
+
+def pore_pressure_at_rest(case, t, depth, chi, label):
+    """p.fluid of the mixture cells at time T against rho_f g (h - y) + chi alpha_s (rho_s -
+    rho_f) g (h - y), relative per cell, within 2 %: the mixture pressure p_m = (1 - rho_air /
+    rho*) g (h - y) of a layer at rest (the air's share, 5e-4 here, is inside the tolerance)."""
+    worst, cells = pore_pressure_error(case, t, depth, chi)
     return lc.check(cells > 0 and worst <= 0.02,
                     f"{label} layer at rest (pore-pressure ratio {chi:g}): p.fluid of the "
                     f"{cells} mixture cells against (rho_f + chi alpha_s (rho_s - rho_f)) g (h - y): "
