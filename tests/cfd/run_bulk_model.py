@@ -332,6 +332,13 @@ BAD = [
      ["constant/bulkProperties", "regularisation", "(0, 1e5]"]),
     ("muI grain diameter above range", "solid { rheology muI; grainDiameter 2; }\n",
      ["constant/bulkProperties", "grainDiameter", "(0, 1]"]),
+    ("pore-pressure ratio at 1 (liquefied: the end of the range is open)",
+     "drifts { porePressureRatio 1; }\n",
+     ["constant/bulkProperties", "drifts.porePressureRatio", "[-1, 1)"]),
+    ("lambdaP with the pore-pressure ratio", "drifts { lambdaP 1.2; }\n",
+     ["constant/bulkProperties", "lambdaP", "not a parameter of pressure porePressureRatio"]),
+    ("pressure closure word", "drifts { pressure effective; }\n",
+     ["constant/bulkProperties", "drifts.pressure", "porePressureRatio", "lambdaP"]),
 ]
 
 
@@ -346,6 +353,26 @@ def bad_input(a, work):
         f.write("mixtureModel bulk;\n")
     ok &= lc.refused(a.prepare, case, "mixtureModel bulk for a liquid",
                      ["system/cfdDict", "mixtureModel", "content is liquid"])
+    # The solver checks bulkMixtureCoeffs against its declaration before the first step: a value
+    # edited out of range, and an undeclared entry.
+    for name, edit, expected in (
+            ("porePressureRatio 1.5", (r"porePressureRatio +[^;]+;", "porePressureRatio 1.5;"),
+             ["porePressureRatio", "1.5", "[-1, 1)"]),
+            ("unknown entry", (r"(relaxation +[^;]+;)", r"\1 frictionAngle 30;"),
+             ["frictionAngle", "unknown entry"])):
+        case = prepared(a, work, "bad_coeffs_" + re.sub(r"\W+", "_", name), "", 0.01, 0.01)
+        path = os.path.join(case, "constant/transportProperties")
+        with open(path) as f:
+            text = re.sub(edit[0], edit[1], f.read())
+        with open(path, "w") as f:
+            f.write(text)
+        fc.run([a.blockmesh], case, "log.blockMesh")
+        r = subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True)
+        msg = r.stdout + r.stderr
+        missing = [e for e in expected + ["bulkMixtureCoeffs"] if e not in msg]
+        ok &= lc.check(r.returncode != 0 and not missing and "Time = " not in msg,
+                       f"mixflowBulkFoam refuses bulkMixtureCoeffs {name} before the first step "
+                       f"(exit {r.returncode}; missing {missing})")
     return ok
 
 
