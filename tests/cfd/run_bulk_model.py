@@ -32,6 +32,11 @@ closed-box    the newtonian mixture's column in a 0.3 x 0.15 m channel closed al
               The alpha predictor (MULESCorr's implicit upwind step) is solved to 1e-13 instead
               of prepare's 1e-10: its residual is the only non-conservative term (1e-10 drifts
               ~1e-8 over the run; measured with 1e-13: 1.2e-11 over 585 steps).
+pore-ratio-fields  uniform drift fields lambdaU, lambdaW, porePressureRatio (the default
+              pressure closure; chi 0.3, tanPhi 0.45) equal to the constants: identical to the
+              constants' run, whose front runs ahead of chi 0's (the ratio reaches the yield); a
+              porePressureRatio field with 3 cells at 1.2 refused before the first step naming
+              the file, the count and the range [-1, 1).
 rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) filling a 0.3 m channel
               (end wall closed, top open to the air) at rest for 2 s: the newtonian mixture and
               cohesive-arrest's (tau_eff 50 Pa). Pass: max |U| over the whole domain
@@ -499,6 +504,56 @@ def drift_field_range(a, work, window=None):
                   + (f"; missing {missing}" if missing else ""))
     ok &= lc.check(not field_times(case) and "Time = " not in msg,
                    "before the first step: no time step taken, no time directory written")
+    return ok
+
+
+# The pore-pressure ratio as a drift field (the default closure): lambda_u, lambda_w as
+# FIELD_DRIFTS, chi 0.3 (the yield (1 - chi)(1 - rho_f/rho_s) p_m with the default tanPhi 0.45).
+RATIO_DRIFTS = {"lambdaU": 1.3, "lambdaW": 0.8, "porePressureRatio": 0.3}
+
+
+def pore_ratio_fields(a, work):
+    """Uniform fields lambdaU, lambdaW, porePressureRatio equal to the constants give the
+    constants' run bit for bit (the closure takes chi per cell); a porePressureRatio field with 3
+    cells at 1.2 is refused before the first step, naming the file, the count and [-1, 1)."""
+    consts = "".join(f"{k} {v:g}; " for k, v in RATIO_DRIFTS.items())
+    ref = bulk_case(work, "bulk_ratio_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
+    fld = bulk_case(work, "bulk_ratio_fields", WATER, f"drifts {{ {consts}fields on; }}\n", 0.3)
+    for k, v in RATIO_DRIFTS.items():
+        drift_field_file(fld, k, f"uniform {v:g}")
+    neutral = bulk_case(work, "bulk_ratio_neutral", WATER,
+                        "drifts { lambdaU 1.3; lambdaW 0.8; porePressureRatio 0; }\n", 0.3)
+    sr = liquidcase.run_case(a, ref, solver=a.bulk_solver)
+    liquidcase.run_case(a, fld, solver=a.bulk_solver)
+    sn = liquidcase.run_case(a, neutral, solver=a.bulk_solver)
+    log = open(os.path.join(fld, "log.mixflowBulkFoam")).read()
+    ok = lc.check("drift field" in log and "constant/porePressureRatio" in log,
+                  "the fields run reads constant/porePressureRatio")
+    ok &= identical_runs(ref, fld)
+    # The ratio reaches the yield: chi 0.3 takes 30 % of the grains' friction, so the front runs
+    # ahead of chi 0's.
+    fr, fn = sr[-1]["front_bed_m"], sn[-1]["front_bed_m"]
+    ok &= lc.check(fr > fn * (1 + 1e-3), f"chi 0.3 lowers the friction: front at "
+                   f"{sr[-1]['time_s']:.2f} s {fr:.5f} m against {fn:.5f} m with chi 0")
+    bad = bulk_case(work, "bulk_ratio_field_range", WATER, f"drifts {{ {consts}fields on; }}\n",
+                    0.3)
+    for k, v in RATIO_DRIFTS.items():
+        drift_field_file(bad, k, f"uniform {v:g}")
+    fc.run([a.prepare, "-case", bad, "-np", "1"], bad, "log.mixflowPrepare")
+    nx, ny = mesh_size(bad)
+    values = [0.3] * (nx * ny)
+    for c in (5, 77, 1000):
+        values[c] = 1.2
+    drift_field_file(bad, "porePressureRatio", values)
+    fc.run([a.blockmesh], bad, "log.blockMesh")
+    r = subprocess.run([a.bulk_solver, "-case", bad], capture_output=True, text=True,
+                       env=fc.run_env())
+    msg = r.stdout + r.stderr
+    want = ["constant/porePressureRatio", f"3 of {nx * ny} cells", "[-1, 1)", "[0.3, 1.2]"]
+    missing = [w for w in want if w not in msg]
+    ok &= lc.check(r.returncode != 0 and not missing and "Time = " not in msg,
+                   f"a porePressureRatio field with 3 cells at 1.2 refused before the first step "
+                   f"(exit {r.returncode})" + (f"; missing {missing}" if missing else ""))
     return ok
 
 
@@ -1123,6 +1178,7 @@ def mui_rest(a, work):
 
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "drift-fields": drift_fields, "drift-field-range": drift_field_range,
+             "pore-ratio-fields": pore_ratio_fields,
              "drift-field-step": drift_field_step, "drift-series": drift_series,
              "drift-series-step": drift_series_step,
              "drift-series-range": lambda a, work: drift_field_range(a, work, SERIES_WINDOWS[1]),
