@@ -12,6 +12,7 @@ comes from the contact forces, not from the extractor's own convention)."""
 import glob
 import os
 import re
+import shutil
 import subprocess
 
 import h5py
@@ -43,7 +44,8 @@ def write_cells(path, box):
 
 
 def side_case(case, side, box, d, rho_p, rho_l, height, end, dt_dem):
-    """The extractor's view of the coupled CASE in SIDE; returns SIDE."""
+    """The extractor's view of the coupled CASE in SIDE (made anew); returns SIDE."""
+    shutil.rmtree(side, ignore_errors=True)
     synthcase.scene(side, L=box.L[0], H=height, W=box.L[2], channel=(2 * box.L[0], box.L[1]), d=d,
                     end_time=end, write_interval=SNAPSHOT_S, content="mixture",
                     liquid_density=rho_l, particle_density=rho_p)
