@@ -19,6 +19,7 @@ void BinSums::add(const BinSums& o) {
   liquidVolumeW += o.liquidVolumeW;
   liquidVolumeP += o.liquidVolumeP;
   fluidVolume += o.fluidVolume;
+  gasVolumeP += o.gasVolumeP;
   fluidSamples += o.fluidSamples;
 }
 
@@ -104,6 +105,7 @@ void BinAccumulator::addFluid(const FluidCells& c) {
     bs.liquidVolumeW += liquid * c.uy[k];
     bs.liquidVolumeP += liquid * c.p[k];
     bs.fluidVolume += fluid;
+    bs.gasVolumeP += (fluid - liquid) * c.p[k];
     bs.fluidSamples += 1;
   }
   ++fluidTimes_;

@@ -27,6 +27,7 @@ struct BinSums {
   double liquidVolumeW = 0;         // ... times U_y
   double liquidVolumeP = 0;         // ... times p
   double fluidVolume = 0;           // sum of eps_f V (liquid and gas)
+  double gasVolumeP = 0;            // sum of (1 - alpha_l) eps_f V p: the gas's pressure
   double fluidSamples = 0;          // number of (cell, time) pairs
   void add(const BinSums& o);
 };

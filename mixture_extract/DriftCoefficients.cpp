@@ -105,6 +105,28 @@ const FieldDef kFields[kFieldCount] = {
     {fMassScale, "mass_balance_scale", "1/s",
      "|d/dx(u_m)| + |d/dy(w_m)|, the size the residual is to be compared with",
      kOutsideMixture | kNoGradient},
+    {fPfHydrostatic, "p_f_hydrostatic", "Pa",
+     "p_gas + rho_f g (h_l - y): the liquid column above the bin centre y, h_l the column's liquid "
+     "surface y0 + sum_j saturation_j dy (rows without a fluid cell take the saturation "
+     "interpolated between their neighbours), p_gas the gas pressure of the lowest bin wholly "
+     "above it; masked where the surface is not inside the grid",
+     kLiquidMask | kNoLiquidSurface},
+    {fPfExcess, "p_f_excess", "Pa",
+     "excess pore pressure p_f - p_f_hydrostatic (0 for a liquid at rest)",
+     kLiquidMask | kNoLiquidSurface},
+    {fPTotal, "p_total", "Pa",
+     "total mean normal stress p_s + p_f: the effective stress sigma' (p_s, the grains' contact "
+     "share per bulk volume) plus the pore pressure",
+     kOutsideMixture},
+    {fPoreRatio, "pore_pressure_ratio", "1",
+     "chi = p_f_excess / (p_s + p_f_excess): the excess pore pressure over the grains' load "
+     "(total less hydrostatic), sigma' = (1 - chi)(p_total - p_f_hydrostatic); 0 at rest, 1 "
+     "liquefied (the bulk model's drifts.porePressureRatio)",
+     kOutsideMixture | kNoLiquidSurface | kSmallLoad},
+    {fLambdaPKinematic, "lambda_p_kinematic", "1",
+     "(P_f / rho_f) / (P_s / rho_s), P_s = p_f + p_s / alpha_s the solid's partial total "
+     "pressure (the bulk model's lambda_p: 1 at rest for an isotropic sigma')",
+     kLp},
 };
 
 const std::vector<MaskBitInfo> kBits = {
@@ -125,6 +147,10 @@ const std::vector<MaskBitInfo> kBits = {
     {kNoGradient, "no_gradient", "mass balance: no mixture neighbour along x or along y"},
     {kLittleLiquid, "little_liquid",
      "liquid share of the fluid volume below thresholds.minLiquidShare (u_f, w_f, p_f masked)"},
+    {kNoLiquidSurface, "no_liquid_surface",
+     "the liquid surface above the bin is not inside the grid (the column's top bin is more than "
+     "half liquid, or the column has no fluid cell)"},
+    {kSmallLoad, "small_load", "|p_s + p_f_excess| below thresholds.minPressure"},
 };
 
 }  // namespace
@@ -230,7 +256,11 @@ MixtureValues mixtureValues(const BinSums& b, double volume, int snapshots, int 
     v[fLambdaPDensity] = lpd;
     v[fLpRaw] = as + lpr * af;
     v[fLpDensity] = as + lpd * af;
+    const double psPartial = pf + ps / as;  // as >= minSolidFraction > 0 in the mixture
+    if (psPartial != 0)
+      v[fLambdaPKinematic] = (pf / s.liquidDensity) / (psPartial / s.solidDensity);
   }
+  if ((r & kOutsideMixture) == 0) v[fPTotal] = ps + pf;
   if ((r & kLuD) == 0) {
     v[fLuu] = (as + lu * lu * af) / (du * du);
     v[fLu] = 1.0 / du;

@@ -1,7 +1,7 @@
-// Mixture variables and drift coefficients of the quasi two-phase model (docs/model.md §9, Pokhrel et
-// al. 2017) from a bin's (or region's) window sums, with a validity mask instead of any division by
-// a vanishing quantity: an ill-posed value is never computed, it is stored as NaN with its mask 0
-// and the reason bits saying why.
+// Mixture variables and drift coefficients of the quasi two-phase model (docs/model.md §9, Pokhrel
+// et al. 2017) from a bin's (or region's) window sums, with a validity mask instead of any division
+// by a vanishing quantity: an ill-posed value is never computed, it is stored as NaN with its mask
+// 0 and the reason bits saying why.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +28,8 @@ enum MaskBit : std::uint16_t {
   kSmallDenominatorW = 512,  // |alpha_s + lambda_w alpha_f| < thresholds.minDenominator
   kNoGradient = 1024,        // mass balance: no neighbour in the mixture along x or y
   kLittleLiquid = 2048,      // liquid share of the fluid volume < thresholds.minLiquidShare
+  kNoLiquidSurface = 4096,   // the liquid surface above the bin is not inside the grid
+  kSmallLoad = 8192,         // |p_s + p_f_excess| < thresholds.minPressure
 };
 constexpr std::uint16_t kOutsideMixture = kNoParticles | kFewParticleSamples | kNoLiquid |
                                           kLittleLiquid | kLowSolidFraction | kUnsaturated;
@@ -82,6 +84,11 @@ enum FieldId : int {
   fLetaM,
   fMassResidual,
   fMassScale,
+  fPfHydrostatic,
+  fPfExcess,
+  fPTotal,
+  fPoreRatio,
+  fLambdaPKinematic,
   kFieldCount
 };
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "PorePressure.h"
+
 namespace mixflow::mx {
 
 std::vector<int> regionBins(const AveragingGrid& g, const Region& r) {
@@ -31,6 +33,7 @@ WindowResult finaliseWindow(const TimeWindow& w, const BinAccumulator& acc, cons
   for (int b = 0; b < g.size(); ++b)
     res.bins.push_back(mixtureValues(res.sums[b], g.binVolume(), res.snapshots, res.fluidTimes, s));
   massBalance(g, res.bins);
+  porePressure(g, res.sums, res.bins, s);
   for (const Region& r : s.regions) {
     RegionResult rr;
     const std::vector<int> members = regionBins(g, r);
@@ -52,6 +55,7 @@ WindowResult finaliseWindow(const TimeWindow& w, const BinAccumulator& acc, cons
     // A region always has bins (checked against the grid when the settings were read).
     rr.values = mixtureValues(rr.sums, g.binVolume() * std::max(rr.bins, 1), res.snapshots,
                               res.fluidTimes, s);
+    regionPorePressure(members, res.sums, res.bins, rr.values, s);
     res.regions.push_back(rr);
   }
   return res;

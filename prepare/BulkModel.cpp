@@ -37,15 +37,28 @@ Schema makeSchema() {
               .alsoAllowed(drift),
           scalarParam("drifts.lambdaW", b.lambdaW, Range::closed(-1e3, 1e3), "", "w_f = λ_w w_s")
               .alsoAllowed(drift),
+          wordParam("drifts.pressure", b.pressureClosure, {"porePressureRatio", "lambdaP"},
+                    "the pore-pressure closure (docs/bulk_model.md): porePressureRatio, the "
+                    "excess pore pressure χ times the grains' buoyant load, σ′ = (1 − χ) α_s "
+                    "(ρ_s − ρ_f) p_m (no pole; χ = 0 is λ_p = 1); lambdaP, the paper's p_f = λ_p "
+                    "p_s, p_m = (α_s + λ_p α_f) p_s"),
+          scalarParam("drifts.porePressureRatio", b.porePressureRatio,
+                      Range{bulk::kPoreRatioMin, bulk::kPoreRatioMax, false, true}, "",
+                      "χ = (P_f − ρ_f p_m) / (α_s (ρ_s − ρ_f) p_m): 0 hydrostatic pore liquid, 1 "
+                      "liquefied, < 0 suction down to the grains' buoyant load")
+              .only({"porePressureRatio"}),
           scalarParam("drifts.lambdaP", b.lambdaP, Range::closed(-1e3, 1e3), "", "p_f = λ_p p_s")
+              .only({"lambdaP"})
               .alsoAllowed(drift),
           switchParam("drifts.fields", b.driftFields,
-                      "take λ_u, λ_w, λ_p cell by cell from the volScalarFields constant/lambdaU, "
-                      "lambdaW, lambdaP (`calibrate_drifts.py --fields`; each cell held to the "
-                      "constants' range); off: the constants"),
+                      "take λ_u, λ_w and χ (or λ_p) cell by cell from the volScalarFields "
+                      "constant/lambdaU, lambdaW and porePressureRatio (or lambdaP) "
+                      "(`calibrate_drifts.py --fields`; each cell held to the constants' range); "
+                      "off: the constants"),
           switchParam("drifts.timeVarying", b.driftTimeVarying,
                       "with `fields on`: fields that change in time, one set per extraction "
-                      "window, constant/drifts/<t>/lambdaU, lambdaW, lambdaP (t the window's "
+                      "window, constant/drifts/<t>/lambdaU, lambdaW, porePressureRatio or lambdaP "
+                      "(t the window's "
                       "centre in s; `calibrate_drifts.py --fields --per-window`; every window's "
                       "cells held to the constants' range), taken at the solver's time as "
                       "`interpolation` says; off: the fixed fields"),
@@ -97,8 +110,9 @@ Schema makeSchema() {
                       "μ_s κ_y p_s m_y, a creep rate ≤ ln(μ_s/(μ_s − τ/(κ_y p_s)))/m_y below μ_s")
               .alsoAllowed("> 0 for muI"),
           wordParam("solid.yieldPressure", b.yieldPressure, {"paper", "buoyancyReduced"},
-                    "κ_y = 1 (paper) or 1 − ρ_f λ_p/ρ_s in τ_ys = τ_c/ρ_s + tanφ κ_y p_s (muI: "
-                    "the pressure κ_y p_s of μ(I) and of I)"),
+                    "the yield's pressure: the solid's partial pressure P_s/ρ_s (paper; κ_y = 1) "
+                    "or the effective stress σ′/(α_s ρ_s) (buoyancyReduced; κ_y = 1 − ρ_f λ_p/ρ_s) "
+                    "in τ_ys = τ_c/ρ_s + tanφ κ_y p_s (muI: the pressure of μ(I) and of I)"),
           dictParam("basal", "the mixture's sliding law at the bed (the bottom wall)"),
           wordParam("basal.law", b.basalLaw, {"noSlip", "coulomb"},
                     "noSlip, or coulomb: the bed's shear stress limited to tan δ_m ρ* p_m "
@@ -126,10 +140,10 @@ namespace fs = std::filesystem;
 // range-checked cell by cell by mixflowBulkFoam, which has the mesh; here a missing file is
 // refused at ENTRY of the drifts block, with MISSING saying what writes it.
 void addFieldDrifts(const fs::path& dir, const Dictionary& dr, const std::string& entry,
-                    const std::string& missing, long& cells, std::string& firstFile,
-                    std::set<std::array<double, 3>>& distinct) {
+                    const std::string& missing, const std::string& poreField, long& cells,
+                    std::string& firstFile, std::set<std::array<double, 3>>& distinct) {
   std::vector<std::vector<double>> values;
-  for (const char* f : {"lambdaU", "lambdaW", "lambdaP"}) {
+  for (const std::string f : {std::string("lambdaU"), std::string("lambdaW"), poreField}) {
     const fs::path field = dir / f;
     if (!fs::exists(field))
       dr.fail(entry, "on, but there is no " + field.string() + " (" + missing + ")");
@@ -181,30 +195,33 @@ const Schema& BulkModel::schema() {
   return s;
 }
 
-double BulkModel::yieldPressureFactor(double fluidDensity) const {
-  return yieldPressure == "paper" ? 1.0 : 1.0 - fluidDensity * lambdaP / solidDensity;
-}
+bool BulkModel::poreRatio() const { return pressureClosure == "porePressureRatio"; }
+
+std::string BulkModel::poreField() const { return poreRatio() ? "porePressureRatio" : "lambdaP"; }
 
 double BulkModel::maxViscosity(double height, double fluidDensity, double nuFluidMax) const {
-  double mu = maxViscosity(height, fluidDensity, nuFluidMax, {lambdaU, lambdaW, lambdaP});
+  const double pore = poreRatio() ? porePressureRatio : lambdaP;
+  double mu = maxViscosity(height, fluidDensity, nuFluidMax, {lambdaU, lambdaW, pore});
   const Schema& sc = schema();
-  const auto inRange = [&](double v, const char* key) {
-    const Range& r = sc.param(std::string("drifts.") + key).range;
+  const auto inRange = [&](double v, const std::string& key) {
+    const Range& r = sc.param("drifts." + key).range;
+    if (key == "porePressureRatio") return r.contains(v);
     return v >= bulk::driftLowerBound(solidFraction, r.lo) && v <= r.hi;
   };
   for (const auto& c : fieldDrifts)
-    if (inRange(c[0], "lambdaU") && inRange(c[1], "lambdaW") && inRange(c[2], "lambdaP"))
+    if (inRange(c[0], "lambdaU") && inRange(c[1], "lambdaW") && inRange(c[2], poreField()))
       mu = std::max(mu, maxViscosity(height, fluidDensity, nuFluidMax, c));
   return mu;
 }
 
 double BulkModel::maxViscosity(double height, double fluidDensity, double nuFluidMax,
-                               const std::array<double, 3>& drifts) const {
-  const bulk::Drifts d{drifts[0], drifts[1], drifts[2]};
-  const double pS = kGravity * height / bulk::lambdaCoefficients(solidFraction, d).p;
-  const double kappa =
-      yieldPressure == "paper" ? 1.0 : 1.0 - fluidDensity * drifts[2] / solidDensity;
-  const double py = kappa * pS;
+                               const std::array<double, 3>& cell) const {
+  // The drifts of a field cell (lambdaU, lambdaW, the closure's value), the rest the constants'.
+  const bulk::Drifts d = poreRatio() ? bulk::Drifts{cell[0], cell[1], lambdaP, cell[2]}
+                                     : bulk::Drifts{cell[0], cell[1], cell[2], porePressureRatio};
+  const bulk::PorePressure pore{poreRatio() ? bulk::PoreClosure::ratio : bulk::PoreClosure::lambdaP,
+                                yieldPressure == "buoyancyReduced", solidDensity, fluidDensity};
+  const double py = kGravity * height * bulk::yieldPressureFactor(solidFraction, d, pore);
   const double nuS =
       solidRheology == "muI"
           ? bulk::solidViscosity(
@@ -231,10 +248,20 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
   sc.allowOnly(dr, "drifts");
   b.lambdaU = readDrift(dr, "lambdaU", b.solidFraction);
   b.lambdaW = readDrift(dr, "lambdaW", b.solidFraction);
-  b.lambdaP = readDrift(dr, "lambdaP", b.solidFraction);
+  b.pressureClosure = sc.word(dr, "drifts.pressure");
+  // An entry of the other closure is named as such, not silently ignored.
+  const std::vector<std::string> closureKeys = sc.keys("drifts", b.pressureClosure);
+  for (const auto& k : dr.keys())
+    if (std::find(closureKeys.begin(), closureKeys.end(), k) == closureKeys.end())
+      dr.fail(k, "is not a parameter of pressure " + b.pressureClosure + " (drifts.pressure)");
+  if (b.poreRatio())
+    b.porePressureRatio = sc.scalar(dr, "drifts.porePressureRatio");
+  else
+    b.lambdaP = readDrift(dr, "lambdaP", b.solidFraction);
   b.driftSource = sc.text(dr, "drifts.source");
   // Drifts set by hand without a source are named as such, not as the default.
-  if (!dr.has("source") && (dr.has("lambdaU") || dr.has("lambdaW") || dr.has("lambdaP")))
+  if (!dr.has("source") &&
+      (dr.has("lambdaU") || dr.has("lambdaW") || dr.has("lambdaP") || dr.has("porePressureRatio")))
     b.driftSource = file.string() + " drifts";
   b.driftFields = sc.flag(dr, "drifts.fields");
   b.driftTimeVarying = sc.flag(dr, "drifts.timeVarying");
@@ -255,15 +282,17 @@ BulkModel readBulkModel(const std::string& caseDir, double sampleSolidFraction, 
       for (const auto& [t, name] : driftWindows(constant / "drifts", dr)) {
         addFieldDrifts(constant / "drifts" / name, dr, "timeVarying",
                        "scripts/calibrate_drifts.py --fields --per-window writes lambdaU, "
-                       "lambdaW and lambdaP in every window",
-                       cells, b.driftFieldFile, distinct);
+                       "lambdaW and " +
+                           b.poreField() + " in every window",
+                       b.poreField(), cells, b.driftFieldFile, distinct);
         b.driftWindowTimes.push_back(t);
       }
     } else {
       addFieldDrifts(constant, dr, "fields",
                      "a volScalarField; scripts/calibrate_drifts.py --fields writes lambdaU, "
-                     "lambdaW and lambdaP",
-                     cells, b.driftFieldFile, distinct);
+                     "lambdaW and " +
+                         b.poreField(),
+                     b.poreField(), cells, b.driftFieldFile, distinct);
     }
     b.fieldDrifts.assign(distinct.begin(), distinct.end());
     b.driftFieldCells = cells;

@@ -17,12 +17,16 @@ struct BulkModel {
   static const Schema& schema();
 
   double solidFraction = 0;  // alpha_s: bulkProperties solidFraction, else sample.solidFraction
-  // Drifts u_f = lambdaU u_s, w_f = lambdaW w_s, p_f = lambdaP p_s (kinematic pressures).
+  // Drifts u_f = lambdaU u_s, w_f = lambdaW w_s; the pore-pressure closure: the ratio chi
+  // (porePressureRatio) or p_f = lambdaP p_s (kinematic pressures).
   double lambdaU = 1, lambdaW = 1, lambdaP = 1;
+  std::string pressureClosure = "porePressureRatio";  // porePressureRatio | lambdaP
+  double porePressureRatio = 0;                       // chi
+
   std::string driftSource = "default (lambda = 1)";  // what set them (mixflowCalibrate records it)
-  // drifts.fields on: the solver takes lambdaU, lambdaW, lambdaP cell by cell from the fields
-  // constant/lambdaU, ... (stage C of docs/calibration.md); fieldDrifts holds their distinct
-  // (lambdaU, lambdaW, lambdaP) cell triples, so that the time-step bound sees every cell.
+  // drifts.fields on: the solver takes lambdaU, lambdaW and the closure's chi or lambdaP cell by
+  // cell from the fields constant/lambdaU, ... (stage C of docs/calibration.md); fieldDrifts
+  // holds their distinct cell triples, so that the time-step bound sees every cell.
   bool driftFields = false;
   std::vector<std::array<double, 3>> fieldDrifts;
   // Cells of the drift fields' nonuniform internalFields (-1: all uniform), and the first file
@@ -58,8 +62,8 @@ struct BulkModel {
   double mixtureDensity = 0;  // rho* (kg/m3): bulkProperties density, else alpha_s rho_s +
                               // alpha_f rho_f
 
-  // kappa_y of the yield pressure kappa_y p_s: 1 (paper) or 1 - rho_f lambda_p / rho_s.
-  double yieldPressureFactor(double fluidDensity) const;
+  bool poreRatio() const;         // pressure porePressureRatio
+  std::string poreField() const;  // the closure's field: porePressureRatio or lambdaP
   // Largest dynamic viscosity (Pa s) the mixture reaches: at rest, at the kinematic pressure g H
   // of a column of height H, with the pore liquid at its cap (nuFluidMax, m2/s); with drift
   // fields, the largest over their cells' drifts inside the allowed range (the solver refuses

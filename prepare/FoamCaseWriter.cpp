@@ -241,7 +241,8 @@ std::string solidSummary(const BulkModel& b) {
 std::string driftFieldsSummary(const BulkModel& b) {
   if (!b.driftFields) return "";
   if (!b.driftTimeVarying)
-    return " (the solver takes the fields constant/lambdaU, lambdaW, lambdaP instead)";
+    return " (the solver takes the fields constant/lambdaU, lambdaW, " + b.poreField() +
+           " instead)";
   const std::vector<double>& t = b.driftWindowTimes;
   return " (the solver takes the fields of the " + std::to_string(t.size()) +
          " windows constant/drifts/<t>/ instead, t " + num(t.front()) + " to " + num(t.back()) +
@@ -259,7 +260,9 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
     << "        solidFraction       " << num(b.solidFraction) << ";\n"
     << "        lambdaU             " << num(b.lambdaU) << ";\n"
     << "        lambdaW             " << num(b.lambdaW) << ";\n"
-    << "        lambdaP             " << num(b.lambdaP) << ";\n";
+    << "        lambdaP             " << num(b.lambdaP) << ";\n"
+    << "        pressureClosure     " << b.pressureClosure << ";\n"
+    << "        porePressureRatio   " << num(b.porePressureRatio) << ";\n";
   // The Coulomb law's coefficients without a rheology entry, so that its files stay as they were.
   if (b.solidRheology == "muI")
     s << "        solidRheology       muI;\n"
@@ -272,7 +275,7 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
       << "        tanPhi              " << num(b.tanPhi) << ";\n"
       << "        cohesion            " << num(b.cohesion / b.solidDensity) << ";   // m2/s2\n";
   s << "        regularisation      " << num(b.regularisation) << ";\n"
-    << "        yieldPressureFactor " << num(b.yieldPressureFactor(r.density)) << ";\n"
+    << "        yieldPressure       " << b.yieldPressure << ";\n"
     << "        fluidTau0           " << num(yield ? r.tau0() : 0.0) << ";\n"
     << "        fluidK              " << num(yield ? r.k() : r.nu()) << ";\n"
     << "        fluidN              " << num(yield ? r.flowIndex : 1.0) << ";\n"
@@ -284,8 +287,8 @@ std::string bulkMixtureCoeffs(const LiquidCase& c) {
     << "        relaxation          " << num(b.relaxation) << ";\n";
   // Only with fields, so that the constant drifts' files stay as they were.
   if (b.driftFields)
-    s << "        driftFields         on;   // constant/lambdaU, lambdaW, lambdaP\n"
-      << "        yieldPressure       " << b.yieldPressure << ";   // kappa_y per cell\n";
+    s << "        driftFields         on;   // constant/lambdaU, lambdaW, " << b.poreField()
+      << "\n";
   if (b.driftTimeVarying)
     s << "        driftTimeVarying    on;   // instead the windows constant/drifts/<t>/\n"
       << "        driftInterpolation  " << b.driftInterpolation << ";\n";
@@ -427,9 +430,11 @@ void describe(const LiquidCase& c, int ranks, std::ostream& os) {
     const BulkModel& b = c.bulk;
     os << "[mixflowPrepare] bulk model (mixflowBulkFoam): alpha_s " << num(b.solidFraction)
        << ", rho* " << num(b.mixtureDensity) << " kg/m3, drifts (" << num(b.lambdaU) << ", "
-       << num(b.lambdaW) << ", " << num(b.lambdaP) << ") from " << b.driftSource
-       << driftFieldsSummary(b) << "; solid " << solidSummary(b) << " (" << b.yieldPressure
-       << "); viscosity at rest up to " << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
+       << num(b.lambdaW) << ", "
+       << (b.poreRatio() ? "chi " + num(b.porePressureRatio) : "lambda_p " + num(b.lambdaP))
+       << ") from " << b.driftSource << driftFieldsSummary(b) << "; solid " << solidSummary(b)
+       << " (" << b.yieldPressure << "); viscosity at rest up to "
+       << formatNumber(c.maxViscosity(), 3) << " Pa s; bed "
        << (b.basalLaw == "coulomb" ? "Coulomb sliding, tanDelta " + num(b.tanDelta) : b.basalLaw)
        << "\n";
   }

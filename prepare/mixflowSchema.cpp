@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "BulkMixtureCoeffs.h"
 #include "BulkModel.h"
 #include "CfdDict.h"
 #include "CouplingProperties.h"
@@ -48,6 +49,7 @@ std::vector<Table> tables() {
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
       {"couplingProperties", mixflow::coupling::CouplingProperties::schema(), {""}},
       {"bulkProperties", mixflow::cfd::BulkModel::schema(), {"", "drifts", "solid", "basal"}},
+      {"bulkMixtureCoeffs", mixflow::BulkMixtureCoeffs::schema(), {""}},
       {"extractDict",
        mixflow::mx::ExtractSettings::schema(),
        {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "regions.<name>"}},

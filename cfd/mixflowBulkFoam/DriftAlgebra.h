@@ -10,11 +10,13 @@
 
 namespace mixflow::bulk {
 
-// Drifts u_f = lambdaU u_s, w_f = lambdaW w_s and kinematic pressures p_f = lambdaP p_s.
+// Drifts u_f = lambdaU u_s, w_f = lambdaW w_s and kinematic pressures p_f = lambdaP p_s; chi is
+// the pore-pressure ratio of the closure that replaces lambdaP (PorePressure below).
 struct Drifts {
   double lambdaU = 1;
   double lambdaW = 1;
   double lambdaP = 1;
+  double chi = 0;
 };
 
 // Lambda coefficients of P-Eqs. 23-24, 36 at solid fraction alphaS.
@@ -88,6 +90,48 @@ inline double solidPressure(double alphaS, const Drifts& d, double pm) {
 inline double fluidPressure(double alphaS, const Drifts& d, double pm) {
   return d.lambdaP * solidPressure(alphaS, d, pm);
 }
+
+// How the mixture's kinematic pressure p_m splits into the pore pressure P_f and the grains'
+// effective stress sigma' (docs/bulk_model.md, "Pore pressure"):
+// - lambdaP: the paper's P-Eqs. 8, 22, 48: p_s = p_m / Lambda_p, p_f = lambda_p p_s, yield
+//   pressure kappa_y p_s, kappa_y = 1 - gamma lambda_p (buoyancyReduced) or 1 (paper); Lambda_p has
+//   a pole at lambda_p = -alpha_s / alpha_f and kappa_y turns negative above 1 / gamma;
+// - ratio: the excess pore-pressure ratio chi, P_f = rho_f p_m + chi L, sigma' = (1 - chi) L with
+//   L = alpha_s (rho_s - rho_f) p_m the grains' buoyant load (total less hydrostatic): linear in
+//   chi, neutral (hydrostatic pore liquid) at chi = 0, liquefied at chi = 1, no pole.
+// Both leave alpha_s P_s + alpha_f P_f = (alpha_s rho_s + alpha_f rho_f) p_m at lambda_p = 1, chi
+// = 0, where they coincide.
+enum class PoreClosure { lambdaP, ratio };
+struct PorePressure {
+  PoreClosure closure = PoreClosure::ratio;
+  bool buoyancyReduced = true;  // the yield on sigma' / (alpha_s rho_s), else on P_s / rho_s
+  double rhoS = 1, rhoF = 0;    // phase densities (kg/m3)
+};
+// The kinematic pressure of the solid's yield stress (m2/s2) per p_m.
+inline double yieldPressureFactor(double alphaS, const Drifts& d, const PorePressure& m) {
+  const double gamma = m.rhoF / m.rhoS;
+  if (m.closure == PoreClosure::lambdaP) {
+    const double kappa = m.buoyancyReduced ? 1.0 - gamma * d.lambdaP : 1.0;
+    return kappa / lambdaCoefficients(alphaS, d).p;
+  }
+  // sigma' / (alpha_s rho_s p_m) and P_s / (rho_s p_m) = (P_f + sigma' / alpha_s) / (rho_s p_m).
+  return m.buoyancyReduced ? (1.0 - d.chi) * (1.0 - gamma)
+                           : 1.0 - d.chi * (1.0 - alphaS) * (1.0 - gamma);
+}
+// P_s / p_m and P_f / p_m (kg/m3): the phase pressures (Pa) of the mixture pressure p_m.
+inline double solidPressureFactor(double alphaS, const Drifts& d, const PorePressure& m) {
+  if (m.closure == PoreClosure::lambdaP) return m.rhoS / lambdaCoefficients(alphaS, d).p;
+  return m.rhoS - d.chi * (1.0 - alphaS) * (m.rhoS - m.rhoF);
+}
+inline double fluidPressureFactor(double alphaS, const Drifts& d, const PorePressure& m) {
+  if (m.closure == PoreClosure::lambdaP)
+    return m.rhoF * d.lambdaP / lambdaCoefficients(alphaS, d).p;
+  return m.rhoF + d.chi * alphaS * (m.rhoS - m.rhoF);
+}
+// The ratio's bounds: chi < 1 keeps a positive effective stress (1 liquefies the grains); below
+// -1 the suction would exceed the grains' buoyant load (the effective stress more than doubled).
+inline constexpr double kPoreRatioMin = -1.0;
+inline constexpr double kPoreRatioMax = 1.0;  // excluded
 
 // Mixture viscosity coefficients Lambda_eta_u = nu_s alpha_s + lambda_u nu_f alpha_f (and _w)
 // and the diffusivity of u_m they give, Lambda_eta Lambda; with lambda_u != lambda_w the larger

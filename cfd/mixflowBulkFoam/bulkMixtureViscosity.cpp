@@ -1,5 +1,6 @@
 #include "bulkMixtureViscosity.H"
 
+#include "BulkMixtureCoeffs.h"
 #include "addToRunTimeSelectionTable.H"
 #include "fvcGrad.H"
 #include "surfaceFields.H"
@@ -17,6 +18,7 @@ Foam::viscosityModels::bulkMixture::bulkMixture(const word& name,
                                                 const surfaceScalarField& phi)
     : viscosityModel(name, viscosityProperties, U, phi),
       coeffs_(viscosityProperties.optionalSubDict(typeName + "Coeffs")),
+      phase_(viscosityProperties.dictName()),
       nu_(IOobject(name, U_.time().timeName(), U_.db(), IOobject::NO_READ, IOobject::AUTO_WRITE),
           U_.mesh(), dimensionedScalar("nu", dimViscosity, 0.0)) {
   readCoeffs();
@@ -24,10 +26,22 @@ Foam::viscosityModels::bulkMixture::bulkMixture(const word& name,
 }
 
 void Foam::viscosityModels::bulkMixture::readCoeffs() {
+  // The declared entries and ranges (common/BulkMixtureCoeffs.cpp), before anything is read.
+  const fileName file =
+      U_.time().rootPath() / U_.time().globalCaseName() / "constant" / "transportProperties";
+  try {
+    mixflow::BulkMixtureCoeffs::check(file, phase_);
+  } catch (const std::exception& e) {
+    FatalErrorInFunction << e.what() << exit(FatalError);
+  }
   alphaS_ = coeffs_.get<scalar>("solidFraction");
   drifts_.lambdaU = coeffs_.get<scalar>("lambdaU");
   drifts_.lambdaW = coeffs_.get<scalar>("lambdaW");
   drifts_.lambdaP = coeffs_.get<scalar>("lambdaP");
+  pore_.closure = coeffs_.lookupOrDefault<word>("pressureClosure", "porePressureRatio") == "lambdaP"
+                      ? mixflow::bulk::PoreClosure::lambdaP
+                      : mixflow::bulk::PoreClosure::ratio;
+  drifts_.chi = coeffs_.lookupOrDefault<scalar>("porePressureRatio", 0);
   muI_ = coeffs_.lookupOrDefault<word>("solidRheology", "coulombViscoplastic") == "muI";
   if (muI_) {
     muIRheology_.muS = coeffs_.get<scalar>("muS");
@@ -41,7 +55,7 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
     solid_.cohesion = coeffs_.get<scalar>("cohesion");
     solid_.regularisation = coeffs_.get<scalar>("regularisation");
   }
-  yieldPressureFactor_ = coeffs_.get<scalar>("yieldPressureFactor");
+  pore_.buoyancyReduced = coeffs_.get<word>("yieldPressure") == "buoyancyReduced";
   fluid_.tau0 = coeffs_.get<scalar>("fluidTau0");
   fluid_.k = coeffs_.get<scalar>("fluidK");
   fluid_.n = coeffs_.get<scalar>("fluidN");
@@ -50,9 +64,10 @@ void Foam::viscosityModels::bulkMixture::readCoeffs() {
   rhoSolid_ = coeffs_.get<scalar>("solidDensity");
   rhoFluid_ = coeffs_.get<scalar>("fluidDensity");
   rhoAir_ = coeffs_.get<scalar>("airDensity");
+  pore_.rhoS = rhoSolid_;
+  pore_.rhoF = rhoFluid_;
   relaxation_ = coeffs_.get<scalar>("relaxation");
   if (coeffs_.lookupOrDefault<Switch>("driftFields", false)) {
-    buoyancyReducedYield_ = coeffs_.get<word>("yieldPressure") == "buoyancyReduced";
     readDriftFields();
   } else {
     driftSeries_.clear();
@@ -71,10 +86,13 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
                                   IOobject::NO_WRITE, false),
                          U_.mesh()));
   f->correctBoundaryConditions();  // coupled patches: the face values of the cells read
-  // The constants' range (prepare/BulkModel.cpp): Lambda = 1 / (alpha_s + lambda alpha_f) finite.
-  const scalar lo = mixflow::bulk::driftLowerBound(alphaS_, -1e3);
-  const scalar hi = 1e3;
-  auto bad = [&](scalar v) { return !(v >= lo && v <= hi); };
+  // The constants' range (prepare/BulkModel.cpp): Lambda = 1 / (alpha_s + lambda alpha_f) finite;
+  // the pore-pressure ratio in [-1, 1).
+  const bool ratio = name == poreFieldName() && pore_.closure == mixflow::bulk::PoreClosure::ratio;
+  const scalar lo =
+      ratio ? mixflow::bulk::kPoreRatioMin : mixflow::bulk::driftLowerBound(alphaS_, -1e3);
+  const scalar hi = ratio ? mixflow::bulk::kPoreRatioMax : 1e3;
+  auto bad = [&](scalar v) { return !(v >= lo && (ratio ? v < hi : v <= hi)); };
   label cells = 0, faces = 0;
   scalar vmin = GREAT, vmax = -GREAT;
   forAll(*f, celli) {
@@ -104,10 +122,12 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
   if (cells || faces) {
     FatalErrorInFunction << file << ": field " << name << " has " << cells << " of " << nCells
                          << " cells and " << faces << " boundary faces outside the allowed range ["
-                         << lo << ", " << hi << "] (alpha_s + " << name
-                         << " alpha_f >= " << mixflow::bulk::kDriftDenominatorMin << ", |" << name
-                         << "| <= 1000, alpha_s " << alphaS_ << "); its values span [" << vmin
-                         << ", " << vmax << "]" << exit(FatalError);
+                         << lo << ", " << hi << (ratio ? ")" : "]");
+    if (!ratio) {
+      FatalError << " (alpha_s + " << name << " alpha_f >= " << mixflow::bulk::kDriftDenominatorMin
+                 << ", |" << name << "| <= 1000, alpha_s " << alphaS_ << ")";
+    }
+    FatalError << "; its values span [" << vmin << ", " << vmax << "]" << exit(FatalError);
   }
   Info << "bulkMixture: drift field " << file << ", range [" << vmin << ", " << vmax << "]" << endl;
   return f;
@@ -120,7 +140,7 @@ void Foam::viscosityModels::bulkMixture::readDriftFields() {
     driftSeries_.clear();
     lambdaU_ = readDriftField("lambdaU");
     lambdaW_ = readDriftField("lambdaW");
-    lambdaP_ = readDriftField("lambdaP");
+    lambdaP_ = readDriftField(poreFieldName());
   }
   auto factors = [&](const word& name) {
     return autoPtr<volVectorField>(
@@ -148,8 +168,8 @@ void Foam::viscosityModels::bulkMixture::readDriftSeries() {
   if (nMin == 0 || nMin != nMax) {
     FatalErrorInFunction << dir << ": " << times.size()
                          << " windows (directories named by their time, each with lambdaU, "
-                            "lambdaW, lambdaP), "
-                         << nMin << " to " << nMax
+                            "lambdaW, "
+                         << poreFieldName() << "), " << nMin << " to " << nMax
                          << " over the ranks; allowed: at least 1, the same on every rank (in "
                             "parallel ./Allrun RANKS decomposes them)"
                          << exit(FatalError);
@@ -166,7 +186,7 @@ void Foam::viscosityModels::bulkMixture::readDriftSeries() {
         << "driftInterpolation " << how << ": allowed linear, nearest" << exit(FatalIOError);
   }
   // Every window is read and range-checked here, before the first step.
-  const word names[3] = {"lambdaU", "lambdaW", "lambdaP"};
+  const word names[3] = {"lambdaU", "lambdaW", poreFieldName()};
   PtrList<volScalarField> fields(3 * times.size());
   forAll(times, i) {
     for (label k = 0; k < 3; ++k) {
@@ -215,24 +235,32 @@ void Foam::viscosityModels::bulkMixture::setVelocityFactors() const {
   }
 }
 
+Foam::word Foam::viscosityModels::bulkMixture::poreFieldName() const {
+  return pore_.closure == mixflow::bulk::PoreClosure::ratio ? "porePressureRatio" : "lambdaP";
+}
+
+mixflow::bulk::Drifts Foam::viscosityModels::bulkMixture::drifts(const scalar lu, const scalar lw,
+                                                                 const scalar pore) const {
+  // The third field is the pressure closure's: lambda_p, or chi (lambda_p then unused).
+  return pore_.closure == mixflow::bulk::PoreClosure::ratio
+             ? mixflow::bulk::Drifts{lu, lw, drifts_.lambdaP, pore}
+             : mixflow::bulk::Drifts{lu, lw, pore, drifts_.chi};
+}
+
 mixflow::bulk::Drifts Foam::viscosityModels::bulkMixture::drifts(label celli) const {
   if (!driftFields()) return drifts_;
-  return {(*lambdaU_)[celli], (*lambdaW_)[celli], (*lambdaP_)[celli]};
+  return drifts((*lambdaU_)[celli], (*lambdaW_)[celli], (*lambdaP_)[celli]);
 }
 
 mixflow::bulk::Drifts Foam::viscosityModels::bulkMixture::drifts(label patchi, label facei) const {
   if (!driftFields()) return drifts_;
-  return {lambdaU_->boundaryField()[patchi][facei], lambdaW_->boundaryField()[patchi][facei],
-          lambdaP_->boundaryField()[patchi][facei]};
+  return drifts(lambdaU_->boundaryField()[patchi][facei], lambdaW_->boundaryField()[patchi][facei],
+                lambdaP_->boundaryField()[patchi][facei]);
 }
 
 Foam::scalar Foam::viscosityModels::bulkMixture::yieldFromMixturePressure(
     const mixflow::bulk::Drifts& d) const {
-  // With fields kappa_y follows lambda_p as prepare's yieldPressureFactor does for the constant.
-  const scalar kappa = driftFields() && buoyancyReducedYield_
-                           ? 1.0 - rhoFluid_ * d.lambdaP / rhoSolid_
-                           : yieldPressureFactor_;
-  return kappa / mixflow::bulk::lambdaCoefficients(alphaS_, d).p;
+  return mixflow::bulk::yieldPressureFactor(alphaS_, d, pore_);
 }
 
 const Foam::volVectorField& Foam::viscosityModels::bulkMixture::solidVelocityFactorField() const {
@@ -254,12 +282,12 @@ Foam::tmp<Foam::volScalarField> Foam::viscosityModels::bulkMixture::pressureFact
     const bool fluid) const {
   syncDrifts();
   tmp<volScalarField> t(new volScalarField(
-      IOobject(fluid ? "rhoFLambdaPByLambdaP" : "rhoSByLambdaP", U_.time().timeName(), U_.mesh(),
-               IOobject::NO_READ, IOobject::NO_WRITE, false),
+      IOobject(fluid ? "fluidPressureFactor" : "solidPressureFactor", U_.time().timeName(),
+               U_.mesh(), IOobject::NO_READ, IOobject::NO_WRITE, false),
       U_.mesh(), dimensionedScalar("zero", dimDensity, 0.0)));
   auto factor = [&](const mixflow::bulk::Drifts& d) {
-    const scalar lp = mixflow::bulk::lambdaCoefficients(alphaS_, d).p;
-    return fluid ? rhoFluid_ * d.lambdaP / lp : rhoSolid_ / lp;
+    return fluid ? mixflow::bulk::fluidPressureFactor(alphaS_, d, pore_)
+                 : mixflow::bulk::solidPressureFactor(alphaS_, d, pore_);
   };
   volScalarField& f = t.ref();
   forAll(f, celli) f[celli] = factor(drifts(celli));

@@ -179,7 +179,7 @@ def drift_case(case, snap_times, fluid_times, partners=None, extract_dict="", co
 
 
 def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, W=0.06, d=0.012,
-                   H=0.12, rho_s=2500.0, rho_f=1000.0):
+                   H=0.12, rho_s=2500.0, rho_f=1000.0, gas_pressure=None):
     """A finished mixture case with a prescribed value in every bin: arrays (window, y bin, x bin)
     us, ws, ps (particle velocity, granular pressure p_s in Pa) and uf, wf, pf (liquid velocity,
     pressure in Pa). One snapshot and one fluid time per window (at its middle; windows of WINDOW
@@ -187,9 +187,12 @@ def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, 
     3 x 3 x 4 particles (d 0.012) wholly inside it and one saturated fluid cell (eps_f 0.45) at
     its centre, so the extractor's bin values are the prescribed ones exactly: the contact
     stress C_i = -ps V_bin / 36 per normal component (p_s = ps), the kinetic term dumped with it.
-    Sample height H (the calibration's flowing criterion), channel 1 x 0.5 m."""
+    Sample height H (the calibration's flowing criterion), channel 1 x 0.5 m. GAS_PRESSURE (Pa):
+    one more row of bins on top, without particles, whose cells hold gas (alpha_l 0) at that
+    pressure, so that the liquid surface is the grains' top edge ny dy inside the grid."""
     us = np.asarray(us, float)
     nw, ny, nx = us.shape
+    rows = ny + (gas_pressure is not None)
     if os.path.exists(case):
         import shutil
         shutil.rmtree(case)
@@ -197,7 +200,7 @@ def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, 
     scene(case, L=0.3, H=H, W=W, channel=(1.0, 0.5), d=d, end_time=end, write_interval=window,
           content="mixture", liquid_density=rho_f, particle_density=rho_s)
     write(os.path.join(case, "system/extractDict"),
-          f"grid {{ x (0 {nx * dx:.10g} {nx}); y (0 {ny * dy:.10g} {ny}); }}\n"
+          f"grid {{ x (0 {nx * dx:.10g} {nx}); y (0 {rows * dy:.10g} {rows}); }}\n"
           f"windows {{ start 0; end {end:.10g}; width {window:.10g}; }}\nfluid {{ source openfoam; }}\n")
     off = np.array([1, 3, 5]) / 6.0
     local = np.stack(np.meshgrid(off * dx, off * dy, (np.arange(4) + 0.5) * W / 4, indexing="ij"),
@@ -210,7 +213,9 @@ def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, 
     r = np.full(n, d / 2)
     m = rho_s * np.pi / 6 * d**3 * np.ones(n)
     vbin = dx * dy * W
-    C = np.column_stack([ii.ravel() * dx + dx / 2, jj.ravel() * dy + dy / 2, np.full(ii.size, W / 2)])
+    gj, gi = np.meshgrid(np.arange(rows), np.arange(nx), indexing="ij")
+    C = np.column_stack([gi.ravel() * dx + dx / 2, gj.ravel() * dy + dy / 2, np.full(gi.size, W / 2)])
+    gas = np.zeros(nx * (rows - ny))  # the gas row's cells, after the grains' rows
     entries = []
     for k in range(nw):
         t = (k + 0.5) * window
@@ -221,9 +226,12 @@ def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, 
         name = f"particles/particles_{k}.vtk"
         vtk(os.path.join(case, "VTK", name), x, np.column_stack([vx, vy, np.zeros(n)]), m, r, st)
         entries.append((name, t))
-        U = np.column_stack([np.asarray(uf, float)[k].ravel(), np.asarray(wf, float)[k].ravel(),
+        U = np.column_stack([np.concatenate([np.asarray(uf, float)[k].ravel(), gas]),
+                             np.concatenate([np.asarray(wf, float)[k].ravel(), gas]),
                              np.zeros(len(C))])
-        foam_time(case, "%.10g" % t, C, np.full(len(C), vbin), U, np.asarray(pf, float)[k].ravel(),
-                  np.ones(len(C)), np.full(len(C), 0.45))
+        p = np.concatenate([np.asarray(pf, float)[k].ravel(), gas + (gas_pressure or 0.0)])
+        alpha = np.concatenate([np.ones(nx * ny), gas])
+        eps = np.concatenate([np.full(nx * ny, 0.45), gas + 1.0])
+        foam_time(case, "%.10g" % t, C, np.full(len(C), vbin), U, p, alpha, eps)
     series(case, entries)
     finish(case)

@@ -32,14 +32,24 @@ closed-box    the newtonian mixture's column in a 0.3 x 0.15 m channel closed al
               The alpha predictor (MULESCorr's implicit upwind step) is solved to 1e-13 instead
               of prepare's 1e-10: its residual is the only non-conservative term (1e-10 drifts
               ~1e-8 over the run; measured with 1e-13: 1.2e-11 over 585 steps).
+pore-ratio-fields  uniform drift fields lambdaU, lambdaW, porePressureRatio (the default
+              pressure closure; chi 0.3, tanPhi 0.45) equal to the constants: identical to the
+              constants' run, whose front runs ahead of chi 0's (the ratio reaches the yield); a
+              porePressureRatio field with 3 cells at 1.2 refused before the first step naming
+              the file, the count and the range [-1, 1).
 rest          a flat layer 0.05 m deep (10 cells, surface on a cell face) filling a 0.3 m channel
-              (end wall closed, top open to the air) at rest for 2 s, twice: the newtonian
-              mixture and cohesive-arrest's (tau_eff 50 Pa). Pass: max |U| over the whole domain
+              (end wall closed, top open to the air) at rest for 2 s: the newtonian mixture and
+              cohesive-arrest's (tau_eff 50 Pa). Pass: max |U| over the whole domain
               (air included) <= 1e-6 m/s at every write (0.5, 1, 1.5, 2 s; measured <= 6.6e-8 and
               3.2e-7 at 0.5 s falling to 1e-8). The force balance is exact on faces, so only the
               solver tolerance remains: p_rgh is solved to 1e-12 (cfdDict pressureTolerance); with
               prepare's auto 1e-7 the Newtonian layer creeps (1e-4 m/s in the mixture, 5e-4 in
-              the air above, growing, and the surface smears into the air row).
+              the air above, growing, and the surface smears into the air row). The pore
+              pressure at the last write: p.fluid of every mixture cell against rho_f g (h - y)
+              (the default pore-pressure ratio 0) within 2 %, and, in a third run of the
+              Newtonian layer with drifts.porePressureRatio 0.5, against rho_f g (h - y) + 0.5
+              alpha_s (rho_s - rho_f) g (h - y); control: lambdaP 2.75 (the total-pressure
+              convention's value at rest) must miss rho_f g (h - y) by more than 50 %.
 incline       steady uniform flow down a 10 degree incline: the newtonian mixture (nu = alpha_s nu_s
               + alpha_f nu_f = 1.2004e-3 m2/s) filling a layer h = 0.01 m deep on a no-slip bed,
               periodic in x (cyclic, 4 cells along 0.01 m), a stress-free top (slip wall: the
@@ -71,15 +81,15 @@ mui-incline   the mu(I) solid (solid { rheology muI; }, glass-bead defaults, d 1
               load) h = 0.01 m deep down a periodic 25 degree incline from rest (incline's
               machinery, p_m = 0 at the stress-free top), 8, 16, 32 cells, to 5 s. Exact: the
               Bagnold profile u(z) = (2/3)(I_theta/d) sqrt(phi g cos(theta)) [h^1.5 - (h - z)^1.5],
-              I_theta = I_0 (tan(theta)/chi - mu_s)/(mu_2 - tan(theta)/chi), phi = (1 -
-              rho_air/rho*)/alpha_s, chi = alpha_s phi (docs/bulk_model.md); u_surface 0.3413 m/s.
+              I_theta = I_0 (tan(theta)/psi - mu_s)/(mu_2 - tan(theta)/psi), phi = (1 -
+              rho_air/rho*)/alpha_s, psi = alpha_s phi (docs/bulk_model.md); u_surface 0.3413 m/s.
               Pass: steady (last two writes within 1e-3 u_surface); the top cell within 1 % of the
               exact value at its centre on 32 cells (measured -0.43 %); observed orders >= 1.8
               (L2) and >= 1.3 (max; the surface's (h - z)^1.5 makes it 1.5) on both refinements
               (measured 1.99, 2.00 and 1.49, 1.50).
-mui-rest      the same layer (16 cells) at tan(theta) = 0.8 chi mu_s (16.99 degrees, below the
+mui-rest      the same layer (16 cells) at tan(theta) = 0.8 psi mu_s (16.99 degrees, below the
               static angle 20.90) for 1 s: the regularised law creeps at a uniform shear rate
-              <= ln(mu_s/(mu_s - tan(theta)/chi))/m_y; pass: max |U| at every write <= h times it
+              <= ln(mu_s/(mu_s - tan(theta)/psi))/m_y; pass: max |U| at every write <= h times it
               (1.61e-4 m/s; measured 0.959 of it, the top cell's centre lying dz/2 below h).
 bad-input     constant/bulkProperties and cfdDict mixtureModel errors are refused by mixflowPrepare
               (exit 2, message naming file, entry and allowed range) before any file is written.
@@ -327,6 +337,13 @@ BAD = [
      ["constant/bulkProperties", "regularisation", "(0, 1e5]"]),
     ("muI grain diameter above range", "solid { rheology muI; grainDiameter 2; }\n",
      ["constant/bulkProperties", "grainDiameter", "(0, 1]"]),
+    ("pore-pressure ratio at 1 (liquefied: the end of the range is open)",
+     "drifts { porePressureRatio 1; }\n",
+     ["constant/bulkProperties", "drifts.porePressureRatio", "[-1, 1)"]),
+    ("lambdaP with the pore-pressure ratio", "drifts { lambdaP 1.2; }\n",
+     ["constant/bulkProperties", "lambdaP", "not a parameter of pressure porePressureRatio"]),
+    ("pressure closure word", "drifts { pressure effective; }\n",
+     ["constant/bulkProperties", "drifts.pressure", "porePressureRatio", "lambdaP"]),
 ]
 
 
@@ -341,6 +358,26 @@ def bad_input(a, work):
         f.write("mixtureModel bulk;\n")
     ok &= lc.refused(a.prepare, case, "mixtureModel bulk for a liquid",
                      ["system/cfdDict", "mixtureModel", "content is liquid"])
+    # The solver checks bulkMixtureCoeffs against its declaration before the first step: a value
+    # edited out of range, and an undeclared entry.
+    for name, edit, expected in (
+            ("porePressureRatio 1.5", (r"porePressureRatio +[^;]+;", "porePressureRatio 1.5;"),
+             ["porePressureRatio", "1.5", "[-1, 1)"]),
+            ("unknown entry", (r"(relaxation +[^;]+;)", r"\1 frictionAngle 30;"),
+             ["frictionAngle", "unknown entry"])):
+        case = prepared(a, work, "bad_coeffs_" + re.sub(r"\W+", "_", name), "", 0.01, 0.01)
+        path = os.path.join(case, "constant/transportProperties")
+        with open(path) as f:
+            text = re.sub(edit[0], edit[1], f.read())
+        with open(path, "w") as f:
+            f.write(text)
+        fc.run([a.blockmesh], case, "log.blockMesh")
+        r = subprocess.run([a.bulk_solver, "-case", case], capture_output=True, text=True)
+        msg = r.stdout + r.stderr
+        missing = [e for e in expected + ["bulkMixtureCoeffs"] if e not in msg]
+        ok &= lc.check(r.returncode != 0 and not missing and "Time = " not in msg,
+                       f"mixflowBulkFoam refuses bulkMixtureCoeffs {name} before the first step "
+                       f"(exit {r.returncode}; missing {missing})")
     return ok
 
 
@@ -351,7 +388,7 @@ def drifting(a, work):
     solid = "solid { viscosity 2e-3; tanPhi 0; cohesion 0; }\n"
     ref = bulk_case(work, "bulk_no_drift", WATER, solid, 0.3)
     drift = bulk_case(work, "bulk_drift", WATER,
-                      solid + "drifts { lambdaU 1.3; lambdaW 1.3; lambdaP 1; }\n", 0.3)
+                      solid + "drifts { pressure lambdaP; lambdaU 1.3; lambdaW 1.3; lambdaP 1; }\n", 0.3)
     sr = liquidcase.run_case(a, ref, solver=a.bulk_solver)
     sd = liquidcase.run_case(a, drift, solver=a.bulk_solver)
     bal = max(abs(r["volume_balance"]) for r in sd)
@@ -378,13 +415,15 @@ def drift_field_file(case, name, internal, window=None):
 
 
 FIELD_DRIFTS = {"lambdaU": 1.3, "lambdaW": 0.8, "lambdaP": 0.6}
+# The drift cases set lambda_p, the closure of the paper (bulkProperties drifts.pressure).
+PRESSURE_LAMBDA_P = "pressure lambdaP; "
 
 
 def field_drift_case(work, name, windows=(), end=0.3, write_interval=0.1, extra=""):
     """A bulk case with the drift constants FIELD_DRIFTS and drifts { fields on; }: the fixed
     fields or, with WINDOWS (time names), time-varying ones (EXTRA: more drifts entries), every
     file uniform at the constants."""
-    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    consts = PRESSURE_LAMBDA_P + "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     varying = "timeVarying on; " if windows else ""
     case = bulk_case(work, name, WATER, f"drifts {{ {consts}fields on; {varying}{extra}}}\n", end,
                      write_interval)
@@ -399,7 +438,7 @@ def drift_fields(a, work):
     bit (every time-series row and every written field file identical). The default solid (tanPhi
     0.45: the yield pressure's kappa_y and Lambda_p take lambda_p per cell) and
     lambda = (1.3, 0.8, 0.6), so each place the drifts enter is exercised."""
-    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    consts = PRESSURE_LAMBDA_P + "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     ref = bulk_case(work, "bulk_drift_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
     fld = field_drift_case(work, "bulk_drift_fields")
     liquidcase.run_case(a, ref, solver=a.bulk_solver)
@@ -468,6 +507,56 @@ def drift_field_range(a, work, window=None):
     return ok
 
 
+# The pore-pressure ratio as a drift field (the default closure): lambda_u, lambda_w as
+# FIELD_DRIFTS, chi 0.3 (the yield (1 - chi)(1 - rho_f/rho_s) p_m with the default tanPhi 0.45).
+RATIO_DRIFTS = {"lambdaU": 1.3, "lambdaW": 0.8, "porePressureRatio": 0.3}
+
+
+def pore_ratio_fields(a, work):
+    """Uniform fields lambdaU, lambdaW, porePressureRatio equal to the constants give the
+    constants' run bit for bit (the closure takes chi per cell); a porePressureRatio field with 3
+    cells at 1.2 is refused before the first step, naming the file, the count and [-1, 1)."""
+    consts = "".join(f"{k} {v:g}; " for k, v in RATIO_DRIFTS.items())
+    ref = bulk_case(work, "bulk_ratio_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
+    fld = bulk_case(work, "bulk_ratio_fields", WATER, f"drifts {{ {consts}fields on; }}\n", 0.3)
+    for k, v in RATIO_DRIFTS.items():
+        drift_field_file(fld, k, f"uniform {v:g}")
+    neutral = bulk_case(work, "bulk_ratio_neutral", WATER,
+                        "drifts { lambdaU 1.3; lambdaW 0.8; porePressureRatio 0; }\n", 0.3)
+    sr = liquidcase.run_case(a, ref, solver=a.bulk_solver)
+    liquidcase.run_case(a, fld, solver=a.bulk_solver)
+    sn = liquidcase.run_case(a, neutral, solver=a.bulk_solver)
+    log = open(os.path.join(fld, "log.mixflowBulkFoam")).read()
+    ok = lc.check("drift field" in log and "constant/porePressureRatio" in log,
+                  "the fields run reads constant/porePressureRatio")
+    ok &= identical_runs(ref, fld)
+    # The ratio reaches the yield: chi 0.3 takes 30 % of the grains' friction, so the front runs
+    # ahead of chi 0's.
+    fr, fn = sr[-1]["front_bed_m"], sn[-1]["front_bed_m"]
+    ok &= lc.check(fr > fn * (1 + 1e-3), f"chi 0.3 lowers the friction: front at "
+                   f"{sr[-1]['time_s']:.2f} s {fr:.5f} m against {fn:.5f} m with chi 0")
+    bad = bulk_case(work, "bulk_ratio_field_range", WATER, f"drifts {{ {consts}fields on; }}\n",
+                    0.3)
+    for k, v in RATIO_DRIFTS.items():
+        drift_field_file(bad, k, f"uniform {v:g}")
+    fc.run([a.prepare, "-case", bad, "-np", "1"], bad, "log.mixflowPrepare")
+    nx, ny = mesh_size(bad)
+    values = [0.3] * (nx * ny)
+    for c in (5, 77, 1000):
+        values[c] = 1.2
+    drift_field_file(bad, "porePressureRatio", values)
+    fc.run([a.blockmesh], bad, "log.blockMesh")
+    r = subprocess.run([a.bulk_solver, "-case", bad], capture_output=True, text=True,
+                       env=fc.run_env())
+    msg = r.stdout + r.stderr
+    want = ["constant/porePressureRatio", f"3 of {nx * ny} cells", "[-1, 1)", "[0.3, 1.2]"]
+    missing = [w for w in want if w not in msg]
+    ok &= lc.check(r.returncode != 0 and not missing and "Time = " not in msg,
+                   f"a porePressureRatio field with 3 cells at 1.2 refused before the first step "
+                   f"(exit {r.returncode})" + (f"; missing {missing}" if missing else ""))
+    return ok
+
+
 # ------------------------------------------------------------------ time-varying drift fields
 SERIES_WINDOWS = ("0.05", "0.15", "0.25")
 
@@ -476,7 +565,7 @@ def drift_series(a, work):
     """Time-varying drift fields whose windows (0.05, 0.15, 0.25 s) all equal the constants
     (1.3, 0.8, 0.6): the run is the constant drifts' run bit for bit (time series and every
     written field file), the drifts being brought to the time at every step."""
-    consts = "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
+    consts = PRESSURE_LAMBDA_P + "".join(f"{k} {v:g}; " for k, v in FIELD_DRIFTS.items())
     ref = bulk_case(work, "bulk_series_constants", WATER, f"drifts {{ {consts}}}\n", 0.3)
     series = field_drift_case(work, "bulk_series_uniform", SERIES_WINDOWS)
     liquidcase.run_case(a, ref, solver=a.bulk_solver)
@@ -617,7 +706,7 @@ def prepared_bound(a, work, name, consts, fields, windows=None):
     constants CONSTS and, if FIELDS, drift fields {name: 'uniform V' or a list of cell values};
     or with WINDOWS, time-varying ones {window: FIELDS}. The viscosity of `mixflowPrepare -check`
     must be the same."""
-    text = "".join(f"{k} {v:g}; " for k, v in consts.items())
+    text = PRESSURE_LAMBDA_P + "".join(f"{k} {v:g}; " for k, v in consts.items())
     text += "fields on; " if fields or windows else ""
     text += "timeVarying on; " if windows else ""
     case = bulk_case(work, name, WATER, f"drifts {{ {text}}}\n", 0.3)
@@ -719,10 +808,15 @@ def cohesive_solid(tau_eff=50.0, mu_p=1.5, cap=1e4, alpha=0.6, rho_f=1000.0):
 
 def rest(a, work):
     """A flat mixture layer 0.05 m deep filling a 0.3 m channel (end wall closed, top open to the
-    air), at rest: it must stay at rest, Newtonian and cohesive."""
+    air), at rest: it must stay at rest, Newtonian and cohesive, and its pore pressure is the
+    pressure closure's: P_f = rho_f g (h - y) for the default pore-pressure ratio chi = 0, and
+    rho_f g (h - y) + chi alpha_s (rho_s - rho_f) g (h - y) for chi 0.5 (the Newtonian layer)."""
     ok, bound, depth = True, 1e-6, 0.05
     geometry = GEOMETRY.replace("length 0.6;", "length 0.3;")
-    for label, solid in (("newtonian", NEWTONIAN_SOLID), ("cohesive", cohesive_solid())):
+    for label, solid, chi in (("newtonian", NEWTONIAN_SOLID, 0.0),
+                              ("cohesive", cohesive_solid(), 0.0),
+                              ("newtonian_chi", NEWTONIAN_SOLID + "drifts { porePressureRatio 0.5; }\n",
+                               0.5)):
         # p_rgh to 1e-12: the auto 1e-7 (the Newtonian layer's, D < 20) leaves face-force residues
         # that the light air turns into currents (1e-4 m/s in the mixture after 2 s, growing).
         case = prepared(a, work, "bulk_rest_" + label, solid, 2.0, 0.5, geometry,
@@ -736,7 +830,50 @@ def rest(a, work):
         ok &= lc.check(max(umax) <= bound, f"{label} layer at rest: max |U| over the writes "
                        f"{', '.join(times)} s: {', '.join(f'{u:.1e}' for u in umax)} m/s "
                        f"(<= {bound:g})")
+        ok &= pore_pressure_at_rest(case, times[-1], depth, chi, label)
+    # Control: the paper's closure at lambda_p 2.75, the value the total-pressure convention
+    # extracts from a saturated column at rest (the lower end of W&P's 2.75-4.1), puts
+    # P_f = rho_f lambda_p / Lambda_p p_m = 1.62 rho_f g (h - y): not the liquid at rest.
+    case = prepared(a, work, "bulk_rest_lambda_p_control",
+                    NEWTONIAN_SOLID + "drifts { pressure lambdaP; lambdaP 2.75; }\n", 0.5, 0.5,
+                    geometry, CFD + "pressureTolerance 1e-12;\n")
+    close_patches(case, ["outlet"])
+    flat_layer(case, depth)
+    run_bulk(a, case)
+    worst = pore_pressure_error(case, field_times(case)[-1], depth, 0.0)[0]
+    ok &= lc.check(worst > 0.5, f"control: lambdaP 2.75 at rest gives p.fluid {100 * worst:.1f} % "
+                   "off rho_f g (h - y) (> 50 %: expected 2.75 / (0.6 + 2.75 0.4) - 1 = 62 %)")
     return ok
+
+
+def pore_pressure_error(case, t, depth, chi):
+    """(largest |p.fluid / want - 1| over the mixture cells at time T, their count), want = (rho_f
+    + chi alpha_s (rho_s - rho_f)) g (h - y) at the cell centre."""
+    nx, ny = mesh_size(case)
+    dy = float(re.search(r"cellSize ([^;]+);", CFD).group(1))
+    alpha_s, rho_f = 0.6, 1000.0  # GEOMETRY's sample.solidFraction, WATER's density
+    pf = fc.read_internal_field(os.path.join(case, t, "p.fluid"))
+    worst, cells = 0.0, 0
+    for j in range(ny):
+        y = (j + 0.5) * dy
+        if y > depth:
+            break
+        want = (rho_f + chi * alpha_s * (RHO_S - rho_f)) * G * (depth - y)
+        for i in range(nx):
+            worst = max(worst, abs(pf[i + nx * j] / want - 1))
+            cells += 1
+    return worst, cells
+
+
+def pore_pressure_at_rest(case, t, depth, chi, label):
+    """p.fluid of the mixture cells at time T against rho_f g (h - y) + chi alpha_s (rho_s -
+    rho_f) g (h - y), relative per cell, within 2 %: the mixture pressure p_m = (1 - rho_air /
+    rho*) g (h - y) of a layer at rest (the air's share, 5e-4 here, is inside the tolerance)."""
+    worst, cells = pore_pressure_error(case, t, depth, chi)
+    return lc.check(cells > 0 and worst <= 0.02,
+                    f"{label} layer at rest (pore-pressure ratio {chi:g}): p.fluid of the "
+                    f"{cells} mixture cells against (rho_f + chi alpha_s (rho_s - rho_f)) g (h - y): "
+                    f"worst {100 * worst:.3f} % (tolerance 2 %)")
 
 
 def periodic_layer(a, work, name, bulk_props, n, h, length, nx, theta, end, rho, max_dt,
@@ -943,18 +1080,18 @@ def sliding_block(a, work):
 # lambda_p = 0: the pore gas carries no load, so p_s = p_m / alpha_s holds the grains' weight.
 DRY = ("rheology Newtonian; density 1.2; viscosity 1e-12; surfaceTension 0; "
        "air { density 0.01; viscosity 1.48e-5; }")
-MUI = ("drifts { lambdaP 0; }\n"
+MUI = ("drifts { pressure lambdaP; lambdaP 0; }\n"
        "solid { rheology muI; grainDiameter 0.001; }\n")
 MU_S, MU_2, I_0, M_Y = math.tan(math.radians(20.9)), math.tan(math.radians(32.76)), 0.279, 100.0
 
 
 MUI_ALPHA, MUI_RHO_F, MUI_RHO_AIR, MUI_H = 0.6, 1.2, 0.01, 0.01
 MUI_RHO = MUI_ALPHA * RHO_S + (1 - MUI_ALPHA) * MUI_RHO_F
-# The pressure factor phi (kappa_y p_s = phi g cos(theta) (h - z)) and the friction factor chi =
-# alpha_s phi (tan(theta) = chi mu(I)) of the dry layer (docs/bulk_model.md): kappa_y = 1 -
+# The pressure factor phi (kappa_y p_s = phi g cos(theta) (h - z)) and the friction factor psi =
+# alpha_s phi (tan(theta) = psi mu(I)) of the dry layer (docs/bulk_model.md): kappa_y = 1 -
 # rho_f lambda_p / rho_s = 1 and Lambda_p = alpha_s + lambda_p alpha_f = alpha_s.
 MUI_PHI = (1 - MUI_RHO_AIR / MUI_RHO) / MUI_ALPHA
-MUI_CHI = MUI_ALPHA * MUI_PHI
+MUI_PSI = MUI_ALPHA * MUI_PHI
 
 
 def mui_layer(a, work, name, n, theta, end, max_dt, writes):
@@ -979,7 +1116,7 @@ def mui_incline(a, work):
     end, vn, writes = 5.0, 4.0, 10
     ok, errs = True, {}
     for n in (8, 16, 32):
-        phi, mu = MUI_PHI, math.tan(theta) / MUI_CHI
+        phi, mu = MUI_PHI, math.tan(theta) / MUI_PSI
         i_theta = I_0 * (mu - MU_S) / (MU_2 - mu)
         amp = 2 / 3 * i_theta / d * math.sqrt(phi * G * math.cos(theta))
         u_surf = amp * h ** 1.5
@@ -1019,13 +1156,13 @@ def mui_incline(a, work):
 
 
 def mui_rest(a, work):
-    """Below the static angle (tan(theta) = 0.8 chi mu_s) the mu(I) layer stays at rest up to
-    the regularisation's creep: mu(I) (1 - exp(-m_y |gamma|)) = tan(theta)/chi with mu(I) >= mu_s
-    bounds the shear rate by ln(mu_s / (mu_s - tan(theta)/chi)) / m_y, uniform in depth."""
-    h, n, chi = MUI_H, 16, MUI_CHI
-    theta = math.atan(0.8 * chi * MU_S)
+    """Below the static angle (tan(theta) = 0.8 psi mu_s) the mu(I) layer stays at rest up to
+    the regularisation's creep: mu(I) (1 - exp(-m_y |gamma|)) = tan(theta)/psi with mu(I) >= mu_s
+    bounds the shear rate by ln(mu_s / (mu_s - tan(theta)/psi)) / m_y, uniform in depth."""
+    h, n, psi = MUI_H, 16, MUI_PSI
+    theta = math.atan(0.8 * psi * MU_S)
     case = mui_layer(a, work, "bulk_mui_rest", n, theta, 1.0, 1e-3, 4)
-    rate = math.log(MU_S / (MU_S - math.tan(theta) / chi)) / M_Y
+    rate = math.log(MU_S / (MU_S - math.tan(theta) / psi)) / M_Y
     bound = rate * h
     run_bulk(a, case)
     ok = True
@@ -1033,14 +1170,15 @@ def mui_rest(a, work):
         umax = max(math.hypot(u[0], u[1]) for u in
                    fc.read_internal_field(os.path.join(case, t, "U")))
         ok &= lc.check(umax <= bound, f"theta {math.degrees(theta):.3f} deg (atan mu_s "
-                       f"{math.degrees(math.atan(chi * MU_S)):.3f}): t = {t} s, max |U| "
-                       f"{umax:.4e} m/s (<= h ln(mu_s/(mu_s - tan(theta)/chi))/m_y = "
+                       f"{math.degrees(math.atan(psi * MU_S)):.3f}): t = {t} s, max |U| "
+                       f"{umax:.4e} m/s (<= h ln(mu_s/(mu_s - tan(theta)/psi))/m_y = "
                        f"{bound:.4e}: {umax / bound:.5f} of it)")
     return ok
 
 
 SCENARIOS = {"liquid-limit": liquid_limit, "newtonian": newtonian, "drifting": drifting,
              "drift-fields": drift_fields, "drift-field-range": drift_field_range,
+             "pore-ratio-fields": pore_ratio_fields,
              "drift-field-step": drift_field_step, "drift-series": drift_series,
              "drift-series-step": drift_series_step,
              "drift-series-range": lambda a, work: drift_field_range(a, work, SERIES_WINDOWS[1]),

@@ -124,4 +124,78 @@ TEST(DriftAlgebra, MuIRheology) {
   EXPECT_DOUBLE_EQ(solidViscosity(r, rate, -1.0), 0);
 }
 
+// The pore-pressure ratio closure over its whole admissible range chi in [-1, 1), for solid
+// fractions up to random close packing and the scenes' liquids (water, the Bingham liquid, air):
+// the yield pressure per p_m is finite and positive under both yield-pressure forms, so the
+// plastic friction alpha_s tanphi (yield factor) has no pole and never turns negative; the phase
+// pressures keep the total alpha_s P_s + alpha_f P_f = (alpha_s rho_s + alpha_f rho_f) p_m (to
+// 1e-12 relative: the identity is exact, the rest is rounding).
+TEST(DriftAlgebra, PoreRatioAdmissibleRange) {
+  const double rhoS = 2500, rhoFs[] = {1000, 1400, 1.2};
+  for (double rhoF : rhoFs)
+    for (double a : {0.01, 0.2, 0.45, 0.6056, 0.64})
+      for (int k = 0; k < 200; ++k) {
+        // 200 values from -1 to just below 1 (the open end).
+        const double chi = kPoreRatioMin + (kPoreRatioMax - kPoreRatioMin) * k / 200.0;
+        const Drifts d{1.3, 0.8, 1, chi};
+        for (bool reduced : {true, false}) {
+          const PorePressure m{PoreClosure::ratio, reduced, rhoS, rhoF};
+          const double f = yieldPressureFactor(a, d, m);
+          EXPECT_TRUE(std::isfinite(f) && f > 0) << "chi " << chi << " alpha_s " << a;
+          // The friction is linear in chi: its bound is at an end of the range.
+          EXPECT_LE(f, 2.0) << "chi " << chi;
+        }
+        const PorePressure m{PoreClosure::ratio, true, rhoS, rhoF};
+        const double ps = solidPressureFactor(a, d, m), pf = fluidPressureFactor(a, d, m);
+        const double total = a * rhoS + (1 - a) * rhoF;
+        EXPECT_NEAR(a * ps + (1 - a) * pf, total, 1e-12 * total) << "chi " << chi;
+        // sigma' = alpha_s (P_s - P_f) = (1 - chi) alpha_s (rho_s - rho_f) p_m > 0.
+        EXPECT_NEAR(a * (ps - pf), (1 - chi) * a * (rhoS - rhoF), 1e-9 * total);
+        EXPECT_GT(a * (ps - pf), 0);
+      }
+}
+
+// chi = 0 is the hydrostatic pore liquid: P_f = rho_f p_m, P_s = rho_s p_m, and the same yield as
+// lambda_p = 1 (the lambdaP closure's neutral value) under both yield-pressure forms.
+TEST(DriftAlgebra, PoreRatioNeutralIsLambdaPOne) {
+  const double a = 0.6056, rhoS = 2500, rhoF = 1000;
+  for (bool reduced : {true, false}) {
+    const PorePressure r{PoreClosure::ratio, reduced, rhoS, rhoF};
+    const PorePressure l{PoreClosure::lambdaP, reduced, rhoS, rhoF};
+    const Drifts d{1.3, 0.8, 1, 0};
+    EXPECT_NEAR(yieldPressureFactor(a, d, r), yieldPressureFactor(a, d, l), 1e-15);
+    EXPECT_NEAR(fluidPressureFactor(a, d, r), rhoF, 1e-12);
+    EXPECT_NEAR(fluidPressureFactor(a, d, l), rhoF, 1e-12);
+    EXPECT_NEAR(solidPressureFactor(a, d, r), rhoS, 1e-12);
+    EXPECT_NEAR(solidPressureFactor(a, d, l), rhoS, 1e-12);
+  }
+  // chi = 1: the pore liquid carries the grains' buoyant load, the effective stress is 0.
+  EXPECT_DOUBLE_EQ(yieldPressureFactor(a, {1, 1, 1, 1.0}, {PoreClosure::ratio, true, rhoS, rhoF}),
+                   0);
+}
+
+// The ratio is lambda_p re-parametrised (buoyancyReduced): the same yield for lambda_p(chi) =
+// (1 - (1 - chi)(1 - gamma) alpha_s) / (gamma + (1 - chi)(1 - gamma) alpha_f), which maps chi in
+// (-inf, 1] onto (-alpha_s / alpha_f, 1 / gamma]: the pole of Lambda_p sits at chi = -inf. The
+// lambdaP closure's own admissible range (alpha_s + lambda_p alpha_f >= 0.01, lambda_p <= 1000)
+// reaches both a factor 100 times the neutral one and a negative friction (lambda_p > 1 / gamma).
+TEST(DriftAlgebra, PoreRatioAgainstLambdaP) {
+  const double a = 0.6056, af = 1 - a, rhoS = 2500, rhoF = 1000, gamma = rhoF / rhoS;
+  const PorePressure r{PoreClosure::ratio, true, rhoS, rhoF};
+  const PorePressure l{PoreClosure::lambdaP, true, rhoS, rhoF};
+  for (double chi : {-1.0, -0.5, 0.0, 0.3, 0.9, 0.999}) {
+    const double q = (1 - chi) * (1 - gamma);
+    const double lp = (1 - q * a) / (gamma + q * af);
+    EXPECT_GT(lp, -a / af);
+    EXPECT_LE(lp, 1 / gamma);
+    EXPECT_NEAR(yieldPressureFactor(a, {1, 1, lp, 0}, l), yieldPressureFactor(a, {1, 1, 1, chi}, r),
+                1e-12)
+        << "chi " << chi;
+  }
+  const double neutral = yieldPressureFactor(a, {}, l);
+  const double nearPole = driftLowerBound(a, -1e3);
+  EXPECT_GT(yieldPressureFactor(a, {1, 1, nearPole, 0}, l), 100 * neutral);
+  EXPECT_LT(yieldPressureFactor(a, {1, 1, 3.0, 0}, l), 0);  // 3 > 1 / gamma = 2.5
+}
+
 }  // namespace

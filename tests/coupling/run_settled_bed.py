@@ -25,6 +25,9 @@ buoyant: a bed settled in the liquid) or its full weight (dry: settled dry, then
 30.002 Pa, K 4.279 Pa s^n, n 0.479) or Bingham liquid (rho 1400, tau_y 2.1 Pa, mu_p 4 Pa s),
 capped at 1e4 Pa s, with the default drag (its slip viscosity closure): a saturated bed at rest in
 a yield-stress liquid must stay at rest with its pore liquid hydrostatic (the same checks).
+--extract EXE also dumps the particle snapshots with their contact virial and the fluid every
+0.05 s and runs mixflowExtract (EXE) on the bed (settled_bed_extract.py): the pore-pressure ratio
+of the bed at rest must be its neutral value 0 within 0.05.
 A double-counted or missing buoyancy fails both the floor and the pressure checks: --models
 DiFeliceDrag (no buoyancy; registered as a negative control with --expect-fail) makes the floor
 carry the full weight (+67 %).
@@ -39,6 +42,7 @@ import sys
 sys.dont_write_bytecode = True
 from mixflow import coupledcase as cc  # noqa: E402
 from mixflow import foamcase as fc  # noqa: E402
+import settled_bed_extract  # noqa: E402
 
 
 def main():
@@ -63,6 +67,9 @@ def main():
     ap.add_argument("--hydrostatic-tol", type=float, default=1e-5,
                     help="relative bound on |dp/dy + rho_l g| between liquid cells")
     ap.add_argument("--json", help="also write the measured numbers to this file")
+    ap.add_argument("--extract", metavar="EXE",
+                    help="mixflowExtract: dump snapshots, extract the bed and check its pore-"
+                    "pressure ratio")
     ap.add_argument("--expect-fail", action="store_true",
                     help="negative control: pass only if the floor or pressure check fails")
     cc.add_parallel_args(ap)
@@ -97,16 +104,22 @@ fix integr all nve/sphere
         (f"unfix gravi\nfix gravs all gravity {g_settle!r} vector 0 -1 0\n"
          f"run {int(round(a.settle / dt_dem))}\nunfix gravs\n"
          f"fix gravi all gravity {cc.G!r} vector 0 -1 0\n" if a.settle > 0 else "") + \
-        f"fix floorOut all ave/time 1 {every} {every} c_floorForce file dem/floor.txt\n"
+        f"fix floorOut all ave/time 1 {every} {every} c_floorForce file dem/floor.txt\n" + \
+        (settled_bed_extract.dem_commands(dt_dem) if a.extract else "")
     coupling = f"""demScript "system/in.liggghts";
 exchangeEvery {every};
 forceModels ({a.models});
 voidFractionModel divided;
 """ + cc.fluid_response_entry(a)
     case = os.path.join(a.workdir, "case")
+    write_steps = (int(round(settled_bed_extract.SNAPSHOT_S / (every * dt_dem))) if a.extract
+                   else None)
     cc.write_case(case, box, a.end, every * dt_dem, dem, coupling, rho_l=rho_l, nu_l=a.nu,
-                  liquid_height=0.045, open_top=True, transport_text=transport)
+                  liquid_height=0.045, open_top=True, transport_text=transport,
+                  write_steps=write_steps)
     os.makedirs(os.path.join(case, "dem"), exist_ok=True)
+    if a.extract:
+        os.makedirs(os.path.join(case, "VTK", "particles"), exist_ok=True)
     cc.run(case, a.solver, a.blockmesh, np=a.np, mpiexec=a.mpiexec, decomposepar=a.decomposepar,
            reconstructpar=a.reconstructpar)
 
@@ -157,13 +170,19 @@ voidFractionModel divided;
     p_ok = worst <= a.hydrostatic_tol and npairs > 0
     ok &= cc.check(p_ok, f"hydrostatic through the bed: worst |dp/dy + rho_l g| / rho_l g = "
                    f"{worst:.3g} (tol {a.hydrostatic_tol:g})")
+    extracted = {}
+    if a.extract:
+        extracted = settled_bed_extract.run(a.extract, os.path.abspath(case),
+                                            os.path.abspath(a.workdir), box, d, rho_p, rho_l,
+                                            a.layers * d, t_end, dt_dem, cc.check)
+        ok &= bool(extracted) and extracted["chi_max_abs"] <= settled_bed_extract.CHI_TOL
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"liquid": a.liquid, "settled_under": a.settle_under if a.settle else None,
                        "end_s": t_end, "floor_over_buoyant_weight": f_floor / buoyant_weight,
                        "pressure_error": worst, "max_mean_vy_m_s": vmean,
                        "max_displacement_d": drift / d, "liquid_max_U_m_s": umax,
-                       "passes": bool(ok)}, f, indent=1)
+                       "extraction": extracted, "passes": bool(ok)}, f, indent=1)
     if a.expect_fail:
         caught = not (floor_ok and p_ok)
         cc.check(caught, "negative control: the floor/pressure checks must reject this run")

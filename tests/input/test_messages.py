@@ -119,8 +119,8 @@ SP, CFD, BP = "constant/sceneProperties", "system/cfdDict", "constant/bulkProper
 BULK_CASES = [
     ("solid fraction 0.9", SP, r"solidFraction +0\.6056;", "solidFraction 0.9;",
      [SP, "sample.solidFraction", "0.9", "(0, 0.64]"]),
-    ("lambda_p nan", BP, None, "drifts { lambdaP nan; }\n", [BP, "drifts.lambdaP", "nan"]),
-    ("lambda_p -5", BP, None, "drifts { lambdaP -5; }\n", [BP, "drifts.lambdaP", "-5", "allowed range [-1.5"]),
+    ("lambda_p nan", BP, None, "drifts { pressure lambdaP; lambdaP nan; }\n", [BP, "drifts.lambdaP", "nan"]),
+    ("lambda_p -5", BP, None, "drifts { pressure lambdaP; lambdaP -5; }\n", [BP, "drifts.lambdaP", "-5", "allowed range [-1.5"]),
     ("unknown lambdaUU", BP, None, "drifts { lambdaUU 1; }\n", [BP, "drifts.lambdaUU", "unknown entry", "lambdaU"]),
     ("tanPhi -1", BP, None, "solid { tanPhi -1; }\n", [BP, "solid.tanPhi", "-1", "[0, 5]"]),
     ("mixtureModel bulky", CFD, r"^mixtureModel bulk;", "mixtureModel bulky;",
@@ -144,7 +144,7 @@ field = ("FoamFile { version 2.0; format ascii; class volScalarField; object %s;
          "boundaryField { \".*\" { type zeroGradient; } frontAndBack { type empty; } }\n")
 for name in ("lambdaU", "lambdaW", "lambdaP"):
     write(os.path.join(bulk, "constant", name), field % name)
-write(os.path.join(bulk, BP), "drifts { fields on; }\n")
+write(os.path.join(bulk, BP), "drifts { pressure lambdaP; fields on; }\n")
 refused(bulk, ["1"], ["constant/lambdaU", "329 cells", "330 = 33 x 10 x 1", "allowed: 330 values",
                       "nothing was run"], "bulk model, drift fields of 329 cells for 330", absent=["demDict"])
 
@@ -269,7 +269,7 @@ for name, pair in (("lambdaU", (lo, -1.0)), ("lambdaW", (1.0, 0.5)), ("lambdaP",
           "boundaryField { \".*\" { type zeroGradient; } frontAndBack { type empty; } }\n"
           % (name, cells, "".join("%.17g\n" % pair[i % 2] for i in range(cells))))
 with open(os.path.join(drift, BP), "a") as f:
-    f.write("drifts { fields on; }\n")
+    f.write("drifts { pressure lambdaP; fields on; }\n")
 mpi = "--oversubscribe" + (" --allow-run-as-root" if os.geteuid() == 0 else "")
 r = subprocess.run(["bash", "-c", '. "$1/scripts/RunFunctions" && foamEnv && '
                     'runApplication mixflowPrepare -case . -np 2 && runApplication blockMesh -case . && '

@@ -359,3 +359,69 @@ TEST(Drift, MassBalanceResidual) {
     EXPECT_LT(worst, 1e-11);
   }
 }
+
+// The pore pressure's split on a column with a known answer: grains (the static column's contact
+// stress) in liquid up to h = 0.13 m (the cell holding the surface half liquid), air above, the
+// fluid's p offset by a gauge P0 = -5 Pa (the top boundary's zero, not the surface's) and, in the
+// right column only, an excess E(y) = 0.3 rho_f g (h - y) on the liquid. Left column: p_f_excess
+// = 0 and chi = 0 to the air's weight over 1.5 bins (rho_air g 0.03 m = 0.29 Pa); right column:
+// p_f_excess = E at the bin centres, chi = E / (p_s + E). A column liquid to its top bin has no
+// surface in the grid and is masked (no_liquid_surface).
+TEST(Drift, PorePressureSplitsIntoHydrostaticAndExcess) {
+  const double h = 0.13, rhoF = 1000, rhoAir = 1, p0 = -5, d = 0.01, r = d / 2;
+  const AveragingGrid g(0.0, 0.06, 3, 0.0, 0.2, 10, 0.03);  // bins 0.02 x 0.02
+  ParticleSnapshot s;
+  const int layers = 8;  // grains to y = 0.08
+  const double m = 2500 * sphereVolume(r);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < layers; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const double c = -m * g0 * (layers - j - 0.5) * d;  // the weight above times d, as above
+        addParticle(s, (i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d, r, 2500, 0, 0, 0,
+                    {c, c, c, 0, 0, 0});
+      }
+  auto excess = [&](double x, double y) {
+    return x > 0.04 && y < h ? 0.3 * rhoF * g0 * (h - y) : 0;
+  };
+  SyntheticFluidSource fluid(
+      0.0, 0.06, 3, 0.0, 0.2, 10, 0.03, {0.0}, [&](double x, double y, double) {
+        FluidState f;
+        // The third column is liquid to the top (its surface outside the grid).
+        const bool full = x > 0.02 && x < 0.04;
+        f.alphaL = full || y < 0.12 ? 1.0 : (y < 0.14 ? 0.5 : 0.0);
+        f.p = p0 + (full ? rhoF * g0 * (0.2 - y)
+                         : (y < h ? rhoF * g0 * (h - y) : rhoAir * g0 * (h - y)) + excess(x, y));
+        return f;
+      });
+  BinAccumulator acc(g, false);
+  acc.addSnapshot(s);
+  acc.addFluid(fluid.cells(0.0));
+  const ExtractSettings st = baseSettings(g);
+  const WindowResult res = finaliseWindow({0, 1, "test"}, acc, g, st);
+  const std::vector<double> yc = g.yCentres();
+  for (int j = 0; j < 6; ++j) {  // the liquid rows below the surface's bin
+    const MixtureValues &left = res.bins[g.index(0, j)], &right = res.bins[g.index(2, j)];
+    ASSERT_TRUE(left.valid(fPfExcess) && right.valid(fPfExcess)) << "row " << j;
+    EXPECT_NEAR(left.value[fPfHydrostatic], p0 + rhoF * g0 * (h - yc[j]), 0.3) << "row " << j;
+    EXPECT_LE(std::fabs(left.value[fPfExcess]), rhoAir * g0 * 0.03) << "row " << j;
+    EXPECT_NEAR(right.value[fPfExcess], excess(0.05, yc[j]), rhoAir * g0 * 0.03) << "row " << j;
+    if (j < 4) {  // the grains' rows: the mixture
+      ASSERT_TRUE(left.valid(fPoreRatio) && right.valid(fPoreRatio)) << "row " << j;
+      EXPECT_LE(std::fabs(left.value[fPoreRatio]), 0.01) << "row " << j;
+      const double e = right.value[fPfExcess];
+      EXPECT_NEAR(right.value[fPoreRatio], e / (right.value[fPs] + e), 1e-12) << "row " << j;
+      EXPECT_NEAR(right.value[fPTotal], right.value[fPs] + right.value[fPf], 1e-9);
+    }
+  }
+  for (int j = 0; j < g.ny(); ++j) {
+    const MixtureValues& full = res.bins[g.index(1, j)];
+    EXPECT_TRUE(full.reasons & kNoLiquidSurface) << "row " << j;
+    EXPECT_FALSE(full.valid(fPfExcess));
+    EXPECT_FALSE(full.valid(fPoreRatio));
+  }
+  std::printf(
+      "pore pressure: left column chi %.2e (bottom row), right %.4f (excess %.1f Pa, p_s %.1f "
+      "Pa)\n",
+      res.bins[g.index(0, 0)].value[fPoreRatio], res.bins[g.index(2, 0)].value[fPoreRatio],
+      res.bins[g.index(2, 0)].value[fPfExcess], res.bins[g.index(2, 0)].value[fPs]);
+}

@@ -1,8 +1,11 @@
 """The calibration command of the quasi two-phase bulk model (docs/calibration.md): constant drifts
-lambda_u, lambda_w, lambda_p from a finished CFD-DEM mixture case, written into a bulk case's
-constant/bulkProperties `drifts` block.
+lambda_u, lambda_w and the pore-pressure closure's value (lambda_p, or the pore-pressure ratio chi
+with --pressure porePressureRatio) from a finished CFD-DEM mixture case, written into a bulk
+case's constant/bulkProperties `drifts` block with the closure (`pressure lambdaP;` or `pressure
+porePressureRatio;`).
 
 usage: mixflow calibrate SOURCE [--target CASE] [--estimator wls|median]
+           [--pressure lambdaP|porePressureRatio]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
            [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
@@ -12,13 +15,15 @@ SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflow
 extractor's valid_lambda_<q> mask, alpha_s >= --min-solid-fraction, and flowing: solid speed
 sqrt(u_s^2 + w_s^2) >= --flowing-factor * sqrt(g H), H the sample height (root attribute
 sample_height_m). Estimators: wls (default), the weighted least-squares slope through the origin
-of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention); median, the median of
-the per-bin ratios. Uncertainty: the 16-84 % interval of the estimate over a bootstrap of the
+of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention, for lambda_p; the
+excess pore pressure p_f_excess on the grains' load p_s + p_f_excess for chi); median, the median
+of the per-bin ratios. Uncertainty: the 16-84 % interval of the estimate over a bootstrap of the
 spatial bins (each drawn with all its windows). Prints a table; with --target writes
 CASE/constant/bulkProperties (created if absent; only the drifts entries change) and the JSON
 (default CASE/constant/bulkProperties.calibration.json). Bad input exits 2 before writing.
 --fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
-the drift fields CASE/constant/lambdaU, lambdaW, lambdaP and `drifts { fields on; }`: per cell,
+the drift fields CASE/constant/lambdaU, lambdaW and lambdaP (or porePressureRatio) and `drifts {
+fields on; }`: per cell,
 from the bin holding the cell centre, the wls slope of that bin's selected windows (--field-mean
 wls, default) or the time mean of its per-bin ratios (u_f / u_s, ...; --field-mean ratio), weighted
 by the samples' weight w (--weights); the constant estimate where the bin has no selected window or
@@ -50,10 +55,19 @@ from mixflow.paper import G
 from mixflow.commands.mixture_lambdas import load, quantiles, wls_slope
 
 H5_IN_CASE = os.path.join("postProcessing", "mixture", "mixture.h5")
-# drift -> (bulkProperties key, the extractor's mask, solid and fluid quantity names)
+# drift -> (bulkProperties key, the extractor's mask, solid and fluid quantity names): the
+# velocity drifts and the two pore-pressure closures' quantities (PRESSURE picks one).
 DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
           "lambda_w": ("lambdaW", "lambda_w", "w_s", "w_f"),
-          "lambda_p": ("lambdaP", "lambda_p_density", "p_s / rho_s", "p_f / rho_f")}
+          "lambda_p": ("lambdaP", "lambda_p_density", "p_s / rho_s", "p_f / rho_f"),
+          "pore_pressure_ratio": ("porePressureRatio", "pore_pressure_ratio", "p_s + p_f_excess",
+                                  "p_f_excess")}
+# bulkProperties drifts.pressure -> the drift it calibrates; the default is the closure the stages
+# of results/bulk_model were calibrated with.
+PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
+PRESSURE_DEFAULT = "lambdaP"
+# The ratio's range (cfd/mixflowBulkFoam/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
+RATIO_MIN, RATIO_MAX = -1.0, 1.0
 ESTIMATORS = ("wls", "median")
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 # prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
@@ -107,7 +121,8 @@ def check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator
         raise InputError(f"--estimator {estimator}: allowed {', '.join(ESTIMATORS)}")
 
 
-def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
+def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
+            pressure=PRESSURE_DEFAULT):
     """Per drift the selected (window, bin) samples: x (solid), y (fluid), w (weight) and block
     (the spatial bin, for the bootstrap); the selection's description; the windows inside
     WINDOWS as (index, t0, t1)."""
@@ -146,8 +161,15 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights):
         base = win[:, None, None] & (f["alpha_s"] >= min_solid_fraction) & (speed >= speed_min)
     xy = {"lambda_u": (f["u_s"], f["u_f"]), "lambda_w": (f["w_s"], f["w_f"]),
           "lambda_p": (f["p_s"] / rho_s, f["p_f"] / rho_f)}
+    if PRESSURE[pressure] == "pore_pressure_ratio":
+        if "p_f_excess" not in f:
+            raise InputError(f"{h5}: no dataset /fields/p_f_excess (--pressure "
+                             "porePressureRatio needs a mixflowExtract file that splits the pore "
+                             "pressure: extract again with -overwrite)")
+        xy["pore_pressure_ratio"] = (f["p_s"] + f["p_f_excess"], f["p_f_excess"])
     out = {}
-    for q, (key, mask, _, _) in DRIFTS.items():
+    for q in ("lambda_u", "lambda_w", PRESSURE[pressure]):
+        key, mask, _, _ = DRIFTS[q]
         if mask not in valid and q == "lambda_p":
             mask = "lambda_p_raw"  # same conditions (mixture, |p_s| >= minPressure)
         if mask not in valid:
@@ -204,18 +226,22 @@ def bootstrap(s, estimator, n_boot, seed):
 
 
 def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0.1,
-              windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1):
+              windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1,
+              pressure=PRESSURE_DEFAULT):
     """The drifts of SOURCE (case directory or .h5): a dict with per drift the chosen estimate
     ("value"), both estimators, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
     counts, and the selection ("selection") and file ("h5", "sha256")."""
     check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator)
+    if pressure not in PRESSURE:
+        raise InputError(f"--pressure {pressure}: allowed {', '.join(PRESSURE)}")
     h5 = find_h5(source)
     try:
         d = load(h5)
     except (OSError, KeyError) as e:
         raise InputError(f"{h5}: not a mixflowExtract HDF5 file ({e})") from None
-    sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights)
-    res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator,
+    sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
+                                  pressure)
+    res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator, "pressure": pressure,
            "selection": dict(info, flowing_factor=flowing_factor,
                              min_solid_fraction=min_solid_fraction, weights=weights,
                              windows_option=[windows[0], None if math.isinf(windows[1])
@@ -241,11 +267,11 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
 
 
 def table(res):
-    lines = [f"{'drift':9} {'value':>8} {'16%':>8} {'84%':>8}   {'wls':>8} {'median':>8}   "
+    lines = [f"{'drift':19} {'value':>8} {'16%':>8} {'84%':>8}   {'wls':>8} {'median':>8}   "
              f"{'ratio p10':>9} {'p50':>8} {'p90':>8} {'samples':>8} {'bins':>5}"]
     for q, r in res["drifts"].items():
         e, rq = r[res["estimator"]], r["ratio_quantiles"]
-        lines.append(f"{q:9} {r['value']:8.4g} {e['p16']:8.4g} {e['p84']:8.4g}   "
+        lines.append(f"{q:19} {r['value']:8.4g} {e['p16']:8.4g} {e['p84']:8.4g}   "
                      f"{r['wls']['value']:8.4g} {r['median']['value']:8.4g}   {rq['p10']:9.4g} "
                      f"{rq['median']:8.4g} {rq['p90']:8.4g} {r['samples']:8d} "
                      f"{r['spatial_bins']:5d}")
@@ -280,13 +306,16 @@ def _solid_fraction(target, tree, res):
     return res["selection"]["source_sample_solid_fraction"], "the source's sample_solid_fraction"
 
 
-def bulk_properties_text(path, drifts, source, block, fields=False, per_window=False):
-    """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; lambdaP; source; }
-    (and `fields on;` with FIELDS, `timeVarying on;` with PER_WINDOW) set through
-    foamdict.edit_dict: every other byte of an existing file stays as it is. BLOCK is the file's
-    drifts block: a `fields` or `timeVarying` it has that this calibration does not write is set
-    off, so that no drifts of an earlier calibration stay in use."""
+def bulk_properties_text(path, drifts, source, block, fields=False, per_window=False,
+                         pressure=PRESSURE_DEFAULT):
+    """The text of PATH (absent: a new file) with drifts { lambdaU; lambdaW; pressure; lambdaP or
+    porePressureRatio; source; } (and `fields on;` with FIELDS, `timeVarying on;` with
+    PER_WINDOW) set through foamdict.edit_dict: every other byte of an existing file stays as it
+    is. BLOCK is the file's drifts block: a `fields` or `timeVarying` it has that this
+    calibration does not write is set off, so that no drifts of an earlier calibration stay in
+    use."""
     entries = {DRIFTS[q][0]: _num(v) for q, v in drifts.items()}
+    entries["pressure"] = pressure
     for key, on in (("fields", fields), ("timeVarying", per_window)):
         if on or key in block:
             entries[key] = "on" if on else "off"
@@ -340,8 +369,11 @@ def drift_fields(res, centres, lo, hi, how, window=None):
         v[inside] = means[iy[inside], ix[inside]]
         fallback = ~np.isfinite(v)
         v[fallback] = res["drifts"][q]["value"]
-        clipped = (v < lo) | (v > hi)
-        v = np.clip(v, lo, hi)
+        # chi's range is [-1, 1): its cells are held below 1 by the largest double under it.
+        qlo, qhi = ((RATIO_MIN, np.nextafter(RATIO_MAX, -np.inf)) if q == "pore_pressure_ratio"
+                    else (lo, hi))
+        clipped = (v < qlo) | (v > qhi)
+        v = np.clip(v, qlo, qhi)
         out[q] = {"values": v, "cells": int(v.size), "from_bins": int((~fallback).sum()),
                   "fallback_cells": int(fallback.sum()), "clipped_cells": int(clipped.sum()),
                   "bins_with_value": int(np.isfinite(means).sum()), "bins": int(means.size),
@@ -454,8 +486,19 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
         raise InputError(f"{path}: solidFraction: {e}") from None
     lo = (DRIFT_DENOMINATOR_MIN - alpha) / (1 - alpha) if alpha < 1 else -DRIFT_MAX
     drifts = {q: r["value"] for q, r in res["drifts"].items()}
+    pressure = res.get("pressure", PRESSURE_DEFAULT)
+    other = next(k for k in PRESSURE if k != pressure)
+    if other in tree.get("drifts", {}):
+        raise InputError(f"{path}: drifts.{other} belongs to the other pore-pressure closure "
+                         f"(drifts.pressure {other}); remove it to calibrate --pressure "
+                         f"{pressure}; nothing written")
     for q, v in drifts.items():
-        if not lo <= v <= DRIFT_MAX:
+        if q == "pore_pressure_ratio":
+            if not RATIO_MIN <= v < RATIO_MAX:
+                raise InputError(f"{path}: drifts.porePressureRatio would be {v:.6g}, outside "
+                                 f"the bulk model's allowed range [{RATIO_MIN:g}, {RATIO_MAX:g}); "
+                                 "nothing written")
+        elif not lo <= v <= DRIFT_MAX:
             raise InputError(f"{path}: drifts.{DRIFTS[q][0]} would be {v:.6g}, outside the bulk "
                              f"model's allowed range [{lo:.4g}, {DRIFT_MAX:g}] (alpha_s + lambda "
                              f"alpha_f >= {DRIFT_DENOMINATOR_MIN:g}, alpha_s {alpha:g} from "
@@ -467,7 +510,7 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
               f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s")
     try:
         text = bulk_properties_text(path, drifts, source, tree.get("drifts", {}), fields,
-                                    per_window)
+                                    per_window, pressure)
     except DictError as e:
         raise InputError(f"{path}: {e}") from None
     json_path = json_path or path + ".calibration.json"
@@ -503,6 +546,10 @@ def main(argv=None):
     ap.add_argument("source", help="CFD-DEM case directory or its mixture.h5")
     ap.add_argument("--target", help="bulk case: writes its constant/bulkProperties drifts")
     ap.add_argument("--estimator", default="wls")
+    ap.add_argument("--pressure", default=PRESSURE_DEFAULT,
+                    help="the pore-pressure closure calibrated and written (bulkProperties "
+                    "drifts.pressure): lambdaP (default, the closure of the committed stages) or "
+                    "porePressureRatio (chi, without the pole of Lambda_p; docs/bulk_model.md)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="flowing bins: solid speed >= FACTOR sqrt(g H) (default 0.05)")
     ap.add_argument("--min-solid-fraction", type=float, default=0.1)
@@ -541,7 +588,7 @@ def main(argv=None):
         if a.target:
             check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
-                        parse_windows(a.windows), a.weights, a.bootstrap, a.seed)
+                        parse_windows(a.windows), a.weights, a.bootstrap, a.seed, a.pressure)
         print(table(res))
         if a.target:
             for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,

@@ -1,6 +1,7 @@
 """The drift coefficients a user takes to calibrate the quasi two-phase model: mixflowExtract on
-finished mixture runs, and robust summaries of lambda_u, lambda_w and lambda_p (its density and raw
-conventions, mixture_extract/README.md) over the flowing bins. Also written into the "lambdas"
+finished mixture runs, and robust summaries of lambda_u, lambda_w and lambda_p (its density, raw
+and kinematic conventions, mixture_extract/README.md) and of the pore pressure's split (the
+pore-pressure ratio chi, the excess pore pressure, the effective stress p_s) over the flowing bins. Also written into the "lambdas"
 entry of results/yield_stress/summary.json when that file exists.
 
 usage: mixflow mixture-lambdas --work runs/reference [--scenes W+P,HB+P,B+P]
@@ -14,12 +15,14 @@ the liquid density from the scene), `mixflowExtract -case DIR -overwrite` runs, 
 postProcessing/mixture/mixture.h5:
   - the flowing bins: lambda valid (the extractor's masks) and alpha_s >= 0.1 and |u_s| >= 0.05 m/s
     (the grains move; where they rest the ratios are ill-conditioned);
-  - median and 10 / 90 % quantiles of each lambda over those bins and all windows, with the counts;
+  - median and 10 / 90 % quantiles of each lambda, of pore_pressure_ratio (chi, the bulk model's
+    drifts.porePressureRatio), p_f_excess and p_s (sigma') over those bins and all windows, with
+    the counts;
   - lambda_u and lambda_w also as the weighted least-squares slope of u_f on u_s over the same bins
     (weights alpha_s (1 - alpha_s) times the bin's particle samples): a ratio of sums, which small
     |u_s| cannot blow up;
-  - the basal pore pressure under the initial column against hydrostatic, per window up to 1 s
-    (basal_pore_pressure).
+  - the basal pore pressure under the initial column against hydrostatic (the extractor's
+    p_f_excess and p_f_hydrostatic), per window up to 1 s (basal_pore_pressure).
 load() (the file's arrays) and wls_slope() are shared with mixflow calibrate.
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
@@ -102,7 +105,8 @@ def summarise(h5):
     speed = np.sqrt(np.nan_to_num(us) ** 2 + np.nan_to_num(ws) ** 2)
     flowing = (np.nan_to_num(a) >= 0.1) & (speed >= 0.05)
     out = {"windows": windows, "flowing_bins": int(flowing.sum())}
-    for lam in ("lambda_u", "lambda_w", "lambda_p_density", "lambda_p_raw"):
+    for lam in ("lambda_u", "lambda_w", "lambda_p_density", "lambda_p_raw", "lambda_p_kinematic",
+                "pore_pressure_ratio", "p_f_excess", "p_s"):
         if lam not in f:
             continue
         m = flowing & valid.get(lam, np.isfinite(f[lam])) & np.isfinite(f[lam])
@@ -118,33 +122,23 @@ def summarise(h5):
 
 def basal_pore_pressure(d, t_max=1.0):
     """The liquid pressure in the bottom bin row under the initial column (x < sample length)
-    against hydrostatic, per window up to T_MAX: excess = p_f - rho_l g (h_s - y_0), h_s the
-    liquid surface height of the bin column (sum of saturation x bin height; bins without fluid
-    samples take their neighbours' saturation). Mean over the x bins; Rondon et al. (2011): a
-    dense column's base is below hydrostatic while it dilates, a loose one's above."""
+    against hydrostatic, per window up to T_MAX: the extractor's p_f_excess = p_f - rho_l g (h_l -
+    y), h_l the liquid surface of the bin column (mixture_extract/README.md), and p_f_hydrostatic.
+    Mean over the x bins where both are valid; Rondon et al. (2011): a dense column's base is
+    below hydrostatic while it dilates, a loose one's above."""
     f, at = d["fields"], d["attrs"]
     with h5py.File(d["path"], "r") as h:
-        x, y, ye = h["grid/x"][()], h["grid/y"][()], h["grid/y_edges"][()]
-    rho, g = float(at["liquid_density_kg_m3"]), 9.81
+        x = h["grid/x"][()]
     cols = np.nonzero(x < float(at["sample_length_m"]))[0]
-    dy = np.diff(ye)
     rows = []
     for w, (t0, t1) in enumerate(zip(d["windows"]["t0"], d["windows"]["t1"])):
         if t1 > t_max + 1e-9:
             break
-        excess, hydro = [], []
-        for i in cols:
-            sat, p0 = f["saturation"][w, :, i], f["p_f"][w, 0, i]
-            ok = np.isfinite(sat)
-            if not ok.any() or not np.isfinite(p0):
-                continue
-            sat = np.interp(np.arange(sat.size), np.nonzero(ok)[0], sat[ok])
-            hs = float(np.sum(sat * dy))
-            hydro.append(rho * g * (hs - y[0]))
-            excess.append(p0 - hydro[-1])
-        if excess:
-            rows.append({"t0": float(t0), "t1": float(t1), "excess_Pa": float(np.mean(excess)),
-                         "hydrostatic_Pa": float(np.mean(hydro)), "columns": len(excess)})
+        excess, hydro = f["p_f_excess"][w, 0, cols], f["p_f_hydrostatic"][w, 0, cols]
+        ok = np.isfinite(excess) & np.isfinite(hydro)
+        if ok.any():
+            rows.append({"t0": float(t0), "t1": float(t1), "excess_Pa": float(np.mean(excess[ok])),
+                         "hydrostatic_Pa": float(np.mean(hydro[ok])), "columns": int(ok.sum())})
     return rows
 
 
