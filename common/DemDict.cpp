@@ -100,8 +100,8 @@ Schema makeSchema() {
           scalarParam("settle.friction", s.friction, Range::nonNegative(), "",
                       "**Open choice** (sample preparation): particle friction while settling "
                       "(more friction, looser packing). With packingControl friction the first "
-                      "trial's; off: the friction (0.1 gives φ ≈ 0.61 at the reference tier, "
-                      "0.629 at the quick tier, 0.7 gives 0.569)"),
+                      "trial's; off: the friction. W&P: 0.1 gives φ = 0.606 at the reference "
+                      "tier and 0.629 at the quick tier, 0.7 gives 0.569 and 0.586"),
           wordParam("settle.packingControl", s.packingControl, {"friction", "off"},
                     "**Open choice** (sample preparation): friction settles the same loose fill "
                     "at trial frictions in [minFriction, maxFriction] (a secant search on "
@@ -112,8 +112,8 @@ Schema makeSchema() {
                     "(0.59-0.64). The friction found is recorded in dem/settled.state and "
                     "summary.json"),
           scalarParam("settle.packingTolerance", s.packingTolerance, Range::closed(1e-4, 0.05), "",
-                      "largest |φ − sample.solidFraction| a controlled settle accepts; below "
-                      "about 0.001 a trial's packing noise (reseeded fills) decides"),
+                      "largest distance of the settled sample's fraction from "
+                      "sample.solidFraction that a controlled settle accepts"),
           scalarParam("settle.minFriction", s.minFriction, Range::closed(0.0, 2.0), "",
                       "smallest settling friction the packing control tries"),
           scalarParam("settle.maxFriction", s.maxFriction, Range::closed(0.0, 2.0), "",

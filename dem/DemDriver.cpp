@@ -464,7 +464,7 @@ void writeSettledDict(std::ostream& f, const SettleReport& st) {
     << ";\n  sampleFraction " << fmt(st.sampleFraction, 17) << ";\n  bulkFraction "
     << fmt(st.bulkFraction, 17) << ";\n  settleTime " << fmt(st.settleTime, 17) << ";\n  converged "
     << (st.converged ? "yes" : "no") << ";\n  packingControl " << st.packingControl
-    << ";\n  packingTolerance " << fmt(st.packingTolerance, 17) << ";\n  settleFriction "
+    << ";\n  packingTolerance " << fmt(st.packingTolerance) << ";\n  settleFriction "
     << fmt(st.settleFriction, 17) << ";\n  settles " << st.settles << ";\n";
   if (!st.fingerprint.empty()) f << "  fingerprint \"" << st.fingerprint << "\";\n";
   f << "}\n";
