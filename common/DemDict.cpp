@@ -98,8 +98,30 @@ Schema makeSchema() {
               "disk space, and less write time than the VTK"),
           dictParam("settle", "the settling of the sample behind the gate"),
           scalarParam("settle.friction", s.friction, Range::nonNegative(), "",
-                      "**Open choice** (sample preparation): particle friction while settling; "
-                      "0.1 gives φ ≈ 0.605 (0 gives ≈ 0.63)"),
+                      "**Open choice** (sample preparation): particle friction while settling "
+                      "(more friction, looser packing). With packingControl friction the first "
+                      "trial's; off: the friction. W&P: 0.1 gives φ = 0.606 at the reference "
+                      "tier and 0.629 at the quick tier, 0.7 gives 0.569 and 0.586"),
+          wordParam("settle.packingControl", s.packingControl, {"friction", "off"},
+                    "**Open choice** (sample preparation): friction settles the same loose fill "
+                    "at trial frictions in [minFriction, maxFriction] (a secant search on "
+                    "ln(μ + 0.05), dem/PackingSearch.h) until the sample fraction N V_p / (L W h) "
+                    "is within packingTolerance of sample.solidFraction, whatever the tier and "
+                    "softening; a miss after maxSettles trials stops the preparation. off: one "
+                    "settle at settle.friction, whose fraction moves with the softening "
+                    "(0.59-0.64). The friction found is recorded in dem/settled.state and "
+                    "summary.json"),
+          scalarParam("settle.packingTolerance", s.packingTolerance, Range::closed(1e-4, 0.05), "",
+                      "largest distance of the settled sample's fraction from "
+                      "sample.solidFraction that a controlled settle accepts"),
+          scalarParam("settle.minFriction", s.minFriction, Range::closed(0.0, 2.0), "",
+                      "smallest settling friction the packing control tries"),
+          scalarParam("settle.maxFriction", s.maxFriction, Range::closed(0.0, 2.0), "",
+                      "largest settling friction the packing control tries")
+              .alsoAllowed("> minFriction"),
+          integerParam("settle.maxSettles", s.maxSettles, 1, 50,
+                       "settles of the loose fill the packing control may run (each costs a "
+                       "whole settle)"),
           scalarParam("settle.maxTime", s.maxTime, Range::positive(), "s",
                       "of settling at most (reported as not converged if reached)"),
           scalarParam("settle.kineticTolerance", s.kineticTolerance, Range::positive(), "m g d",
@@ -139,6 +161,21 @@ Schema makeSchema() {
 void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
   sc.allowOnly(d, "settle");
   s.friction = sc.scalar(d, "settle.friction");
+  s.packingControl = sc.word(d, "settle.packingControl");
+  s.packingTolerance = sc.scalar(d, "settle.packingTolerance");
+  s.minFriction = sc.scalar(d, "settle.minFriction");
+  s.maxFriction = sc.scalar(d, "settle.maxFriction");
+  s.maxSettles = sc.integer(d, "settle.maxSettles");
+  if (s.maxFriction <= s.minFriction)
+    d.fail("maxFriction", "value " + formatNumber(s.maxFriction, 4) +
+                              " must be above minFriction (" + formatNumber(s.minFriction, 4) +
+                              "); allowed range (" + formatNumber(s.minFriction, 4) + ", 2]");
+  if (s.packingControl == "friction" && (s.friction < s.minFriction || s.friction > s.maxFriction))
+    d.fail("friction", "value " + formatNumber(s.friction, 4) +
+                           " is the packing control's first trial and must lie in [minFriction, "
+                           "maxFriction]; allowed range [" +
+                           formatNumber(s.minFriction, 4) + ", " + formatNumber(s.maxFriction, 4) +
+                           "] (or packingControl off)");
   s.maxTime = sc.scalar(d, "settle.maxTime");
   s.kineticTolerance = sc.scalar(d, "settle.kineticTolerance");
   s.fillSpacing = sc.scalar(d, "settle.fillSpacing");

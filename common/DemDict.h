@@ -12,8 +12,18 @@
 namespace mixflow {
 
 struct SettleSpec {
-  double friction = 0.1;  // particle friction while settling behind the gate (sets the packing)
-  double maxTime = 3.0;   // s of simulated settling at most
+  // particle friction while settling behind the gate (sets the packing); with packingControl
+  // friction, the first trial's
+  double friction = 0.1;
+  // friction: the settling friction is searched in [minFriction, maxFriction], each trial settling
+  // the same loose fill, until the sample's solid fraction is within packingTolerance of
+  // sample.solidFraction (dem/PackingSearch.h); off: one settle at `friction`.
+  std::string packingControl = "friction";
+  double packingTolerance = 0.003;  // |phi - sample.solidFraction| allowed (absolute)
+  double minFriction = 0;
+  double maxFriction = 1.0;
+  long maxSettles = 6;             // trials before the preparation stops
+  double maxTime = 3.0;            // s of simulated settling at most
   double kineticTolerance = 1e-5;  // settled when mean KE per particle < tol * m g d
   double fillSpacing = 1.15;       // lattice spacing of the initial loose fill, in diameters
   double relaxTime = 0.05;         // s with the real friction before the gate opens

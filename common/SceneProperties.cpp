@@ -51,12 +51,16 @@ Schema makeSchema() {
               .alsoAllowed("≥ d with grains")
               .plausible(kLengths, "a laboratory or field dam-break scene", kLengthSlips),
           // Above random close packing (0.64) a monodisperse sample cannot be made by settling.
-          scalarParam("sample.solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64), "",
-                      "target φ of the grains: N = φ L H W / V_p particles (Li & Zhao). It sets "
-                      "the count only: the settled packing comes from `settle.friction` (0.1: φ ≈ "
-                      "0.61 at the reference tier; 0.7: 0.569) and the softening (quick tier: "
-                      "0.59-0.64). The settle warns when the settled fraction is more than 3 % "
-                      "off the target. Validated, and unused, in a liquid scene"),
+          scalarParam(
+              "sample.solidFraction", s.solidFraction, Range::openClosed(0.0, 0.64), "",
+              "φ of the grains (Li & Zhao): N = φ L H W / V_p particles, and the settled "
+              "sample's fraction N V_p / (L W h) within demDict settle.packingTolerance "
+              "(0.003) at every tier and softening: the packing control "
+              "(settle.packingControl) tunes the settling friction, else the preparation "
+              "stops naming the entries to change. With packingControl off it sets the "
+              "count only (settle.friction 0.1: 0.606 at the reference tier, 0.629 at the "
+              "quick tier) and the settle warns 3 % off. Validated, and unused, in a liquid "
+              "scene"),
           dictParam("channel", "the channel downstream of the gate"),
           requiredScalar("channel.length", Range::positive(), "m",
                          "x of the outlet: particles beyond are deleted, the liquid leaves "

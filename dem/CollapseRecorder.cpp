@@ -251,7 +251,11 @@ void CollapseRecorder::writeSummary(const SettleReport& st, const CollapseReport
     << ", \"sample_solid_fraction\": " << fmt(st.sampleFraction)
     << ", \"bulk_solid_fraction\": " << fmt(st.bulkFraction)
     << ", \"settle_time_s\": " << fmt(st.settleTime)
-    << ", \"converged\": " << (st.converged ? "true" : "false") << "},\n"
+    << ", \"converged\": " << (st.converged ? "true" : "false") << ", \"packing_control\": \""
+    << st.packingControl << "\""
+    << ", \"packing_tolerance\": " << fmt(st.packingTolerance)
+    << ", \"settle_friction\": " << fmt(st.settleFriction) << ", \"settles\": " << st.settles
+    << "},\n"
     << "  \"young_modulus_pa\": " << fmt(s.youngModulusUsed()) << ",\n"
     << "  \"wall_young_modulus_pa\": " << fmt(s.wallYoungModulusUsed()) << ",\n"
     << "  \"young_modulus_factor\": " << fmt(s.dem.youngModulusFactor) << ",\n"

@@ -28,6 +28,12 @@ struct SettleReport {
   double settleTime = 0;      // simulated settling time (s)
   bool converged = false;
   std::string fingerprint;  // hash of the settling's inputs (SettledSample.h); empty: not recorded
+  // The deposition protocol (demDict settle.packingControl): the settling friction of the kept
+  // sample, the settles run to find it, and the tolerance on |sampleFraction - target| (0: off).
+  std::string packingControl = "off";
+  double settleFriction = 0;
+  long settles = 1;
+  double packingTolerance = 0;
 };
 
 struct CollapseReport {

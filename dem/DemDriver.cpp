@@ -63,13 +63,104 @@ double DemDriver::simTime() const { return (lig_->step() - step0_) * dt_; }
 
 SettleReport DemDriver::settle() {
   const Scene& s = scene_;
+  const SettleSpec& ss = s.settle;
+  const bool control = ss.packingControl == "friction";
+  const std::string fingerprint = fingerprintOf(settleInputs(s));
+  std::ostringstream note;  // find() reports an ignored checkpoint; rank 0 prints it
+  std::optional<SettleCheckpoint> from = SettleCheckpoint::find(s.caseDir, fingerprint, note);
+  if (rank_ == 0) out_ << note.str();
+  PackingSearch search(s.sample.solidFraction, ss.packingTolerance, ss.minFriction, ss.maxFriction,
+                       ss.friction);
+  if (from)
+    for (const PackingSearch::Trial& tr : from->trials) search.add(tr.friction, tr.fraction);
+  if (from && from->restartFile == SettleCheckpoint::kNone) from.reset();  // between two trials
+  SettleReport r;
+  double friction = ss.friction;
+  for (int run = 0;; ++run) {
+    if (control) {
+      const std::optional<double> next = search.next();
+      if (!next || static_cast<long>(search.trials().size()) >= ss.maxSettles)
+        throw PackingMiss(packingMiss(search, next ? "" : search.whyNot()));
+      friction = *next;
+      // Each trial settles the same loose fill from LIGGGHTS' initial state (`clear`; a second
+      // instance in one process re-registers LIGGGHTS' styles with a warning per style).
+      if (run > 0) {
+        lig_->command("clear");
+        lig_->invalidateSetup();
+      }
+    }
+    r = settleTrial(friction, from, fingerprint, search.trials());
+    from.reset();
+    if (!control) break;
+    search.add(friction, r.sampleFraction);
+    if (rank_ == 0)
+      out_ << "[dem] packing control: settle " << search.trials().size() << " at friction "
+           << fmt(friction, 4) << " gave " << fmt(r.sampleFraction, 4) << " (target "
+           << s.sample.solidFraction << " ± " << ss.packingTolerance << ")" << std::endl;
+    if (search.landed()) break;
+    if (ss.checkpointInterval > 0 && rank_ == 0) {
+      SettleCheckpoint between;
+      between.restartFile = SettleCheckpoint::kNone;
+      between.fingerprint = fingerprint;
+      between.trials = search.trials();
+      between.write(s.caseDir);
+    }
+  }
+  MPI_Barrier(comm_);
+  if (rank_ == 0) SettleCheckpoint::remove(s.caseDir);  // the settled sample supersedes it
+  r.packingControl = ss.packingControl;
+  r.settleFriction = friction;
+  r.settles = control ? static_cast<long>(search.trials().size()) : 1;
+  r.packingTolerance = control ? ss.packingTolerance : 0.0;
+  // Without the control the target fraction only sets the grain count.
+  const double off = r.sampleFraction / s.sample.solidFraction - 1.0;
+  if (!control && rank_ == 0 && std::abs(off) > kSettledFractionTolerance)
+    out_ << "[dem] warning: the settled sample solid fraction " << fmt(r.sampleFraction, 4)
+         << " is " << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
+         << " sample.solidFraction " << s.sample.solidFraction
+         << " (constant/sceneProperties): with demDict settle.packingControl off the target sets "
+            "the grain count only; settle.friction sets the packing (looser with more friction), "
+            "softened contacts (youngModulusFactor) compact it"
+         << std::endl;
+  return r;
+}
+
+std::string DemDriver::packingMiss(const PackingSearch& search, const std::string& why) const {
+  const Scene& s = scene_;
+  const SettleSpec& ss = s.settle;
+  const PackingSearch::Trial* best = nullptr;
+  std::string list;
+  for (const PackingSearch::Trial& tr : search.trials()) {
+    if (!best || std::abs(tr.fraction - s.sample.solidFraction) <
+                     std::abs(best->fraction - s.sample.solidFraction))
+      best = &tr;
+    list += (list.empty() ? "" : ", ") + fmt(tr.friction, 4) + " -> " + fmt(tr.fraction, 4);
+  }
+  std::ostringstream m;
+  m << "packing control: no settle of the loose fill reached sample.solidFraction "
+    << s.sample.solidFraction << " ± " << ss.packingTolerance << " (constant/sceneProperties, "
+    << "system/demDict settle.packingTolerance)";
+  if (best)
+    m << "; the nearest, at settle friction " << fmt(best->friction, 4) << ", gave "
+      << fmt(best->fraction, 4);
+  m << " after " << search.trials().size() << " settles (friction -> fraction: " << list << ")";
+  if (!why.empty()) m << ": " << why;
+  m << ". Change system/demDict settle.maxSettles (now " << ss.maxSettles
+    << ", allowed 1-50), settle.minFriction / settle.maxFriction (now " << ss.minFriction << " / "
+    << ss.maxFriction << ", allowed 0-2), settle.packingTolerance (now " << ss.packingTolerance
+    << ", allowed 1e-4 to 0.05), or sample.solidFraction (allowed (0, 0.64]) to one this "
+       "softening reaches; settle.packingControl off settles once at settle.friction. No "
+       "settled sample was written";
+  return m.str();
+}
+
+SettleReport DemDriver::settleTrial(double friction, const std::optional<SettleCheckpoint>& from,
+                                    const std::string& fingerprint,
+                                    const std::vector<PackingSearch::Trial>& trials) {
+  const Scene& s = scene_;
   // The scene the grains settle in: s, or s softened to settle.stiffenFrom with its own step.
   const Scene st = s.settlingScene();
   const double dtSettle = st.timeStepUsed();
-  const std::string fingerprint = fingerprintOf(settleInputs(s));
-  std::ostringstream note;  // find() reports an ignored checkpoint; rank 0 prints it
-  const std::optional<SettleCheckpoint> from = SettleCheckpoint::find(s.caseDir, fingerprint, note);
-  if (rank_ == 0) out_ << note.str();
   double t = 0;
   double top = 0;
   if (from) {
@@ -102,7 +193,7 @@ SettleReport DemDriver::settle() {
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
   // off while settling: a constant rolling torque chatters at rest and keeps the sample from
   // settling.
-  lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, s.settle.friction, 0.0));
+  lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, friction, 0.0));
   lig_->commands(settleGravityCommands(s));
 
   const double m = s.particles.mass(), d = s.particles.diameter;
@@ -132,7 +223,7 @@ SettleReport DemDriver::settle() {
       break;
     }
     if (every > 0 && t >= nextCheckpoint - 0.5 * dtSettle) {
-      writeSettleCheckpoint(t, fingerprint);
+      writeSettleCheckpoint(t, fingerprint, trials);
       nextCheckpoint += every;
     }
   }
@@ -166,28 +257,18 @@ SettleReport DemDriver::settle() {
   lig_->run(nRelax);
   t += nRelax * dt_;
   SettleReport r = measureSample(t, converged);
-  MPI_Barrier(comm_);
-  if (rank_ == 0) SettleCheckpoint::remove(s.caseDir);  // the settled sample supersedes it
   if (rank_ == 0)
     out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
          << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
          << "), sample solid fraction " << fmt(r.sampleFraction, 4) << " (target "
          << s.sample.solidFraction << "), bulk fraction " << fmt(r.bulkFraction, 4) << std::endl;
-  // The target fraction only sets the grain count; the settling friction sets the packing.
-  const double off = r.sampleFraction / s.sample.solidFraction - 1.0;
-  if (rank_ == 0 && std::abs(off) > kSettledFractionTolerance)
-    out_ << "[dem] warning: the settled sample solid fraction " << fmt(r.sampleFraction, 4)
-         << " is " << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
-         << " sample.solidFraction " << s.sample.solidFraction
-         << " (constant/sceneProperties): the target sets the grain count only; demDict "
-            "settle.friction sets the packing (looser with more friction), softened contacts "
-            "(youngModulusFactor) compact it"
-         << std::endl;
   return r;
 }
 
-void DemDriver::writeSettleCheckpoint(double t, const std::string& fingerprint) {
+void DemDriver::writeSettleCheckpoint(double t, const std::string& fingerprint,
+                                      const std::vector<PackingSearch::Trial>& trials) {
   SettleCheckpoint c;
+  c.trials = trials;
   c.time = t;
   c.fingerprint = fingerprint;
   c.restartFile = SettleCheckpoint::slotFile(settleSlot_);
@@ -382,7 +463,9 @@ void writeSettledDict(std::ostream& f, const SettleReport& st) {
   f << "{\n  particles " << st.particles << ";\n  height " << fmt(st.settledHeight, 17)
     << ";\n  sampleFraction " << fmt(st.sampleFraction, 17) << ";\n  bulkFraction "
     << fmt(st.bulkFraction, 17) << ";\n  settleTime " << fmt(st.settleTime, 17) << ";\n  converged "
-    << (st.converged ? "yes" : "no") << ";\n";
+    << (st.converged ? "yes" : "no") << ";\n  packingControl " << st.packingControl
+    << ";\n  packingTolerance " << fmt(st.packingTolerance) << ";\n  settleFriction "
+    << fmt(st.settleFriction, 17) << ";\n  settles " << st.settles << ";\n";
   if (!st.fingerprint.empty()) f << "  fingerprint \"" << st.fingerprint << "\";\n";
   f << "}\n";
 }
@@ -395,6 +478,13 @@ SettleReport readSettledDict(const Dictionary& sd) {
   st.bulkFraction = sd.scalar("bulkFraction", Range::nonNegative());
   st.settleTime = sd.scalar("settleTime", Range::nonNegative());
   st.converged = sd.switchOr("converged", false);
+  // Samples settled before the packing control record none of it.
+  if (sd.has("packingControl")) {
+    st.packingControl = sd.word("packingControl", {"friction", "off"});
+    st.packingTolerance = sd.scalar("packingTolerance", Range::nonNegative());
+    st.settleFriction = sd.scalar("settleFriction", Range::nonNegative());
+    st.settles = sd.integer("settles", 1, 1000);
+  }
   if (sd.has("fingerprint")) st.fingerprint = sd.word("fingerprint", {});
   return st;
 }

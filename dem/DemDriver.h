@@ -7,12 +7,16 @@
 
 #include <iosfwd>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "CollapseRecorder.h"
 #include "Dictionary.h"
 #include "LiggghtsSession.h"
+#include "PackingSearch.h"
 #include "Scene.h"
+#include "SettleCheckpoint.h"
 
 namespace mixflow::dem {
 
@@ -20,14 +24,25 @@ namespace mixflow::dem {
 void writeSettledDict(std::ostream& f, const SettleReport& st);
 SettleReport readSettledDict(const Dictionary& d);
 
+// A controlled settle (demDict settle.packingControl friction) that found no settling friction
+// within the tolerance: the preparation stops, its message naming the fraction achieved, the
+// target and the entries to change.
+class PackingMiss : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class DemDriver {
  public:
-  // settle() warns when the settled sample's solid fraction is this far (relative) from the
-  // target (docs/parameters.md, sample.solidFraction).
+  // With settle.packingControl off, settle() warns when the settled sample's solid fraction is
+  // this far (relative) from the target (docs/parameters.md, sample.solidFraction).
   static constexpr double kSettledFractionTolerance = 0.03;
   DemDriver(const Scene& scene, MPI_Comm comm, std::ostream& out);
   ~DemDriver();
 
+  // Settles the loose fill behind the gate; with settle.packingControl friction, again from the
+  // same fill at the frictions PackingSearch proposes until the solid fraction lands (else throws
+  // naming the achieved fraction, the target and the entries to change).
   SettleReport settle();
   // Opens the gate (t = 0) and runs the collapse to endTime or arrest.
   CollapseReport collapse(const SettleReport& settled);
@@ -42,8 +57,16 @@ class DemDriver {
   const std::string& outputDir() const { return outDir_; }
 
  private:
-  // The settle's checkpoint at t (SettleCheckpoint.h).
-  void writeSettleCheckpoint(double t, const std::string& fingerprint);
+  // One settle of the loose fill (or from its checkpoint) at this settling friction, stiffened
+  // and relaxed at the real friction, measured.
+  SettleReport settleTrial(double friction, const std::optional<SettleCheckpoint>& from,
+                           const std::string& fingerprint,
+                           const std::vector<PackingSearch::Trial>& trials);
+  // The message of a packing control that found no friction within tolerance.
+  std::string packingMiss(const PackingSearch& search, const std::string& why) const;
+  // The settle's checkpoint at t (SettleCheckpoint.h), with the control's finished trials.
+  void writeSettleCheckpoint(double t, const std::string& fingerprint,
+                             const std::vector<PackingSearch::Trial>& trials);
   double simTime() const;
   void writeResumeState(const CollapseReport& rep, bool profileDone);
   CollapseReport runCollapse(CollapseReport rep, bool profileDone, bool appendSeries);

@@ -27,7 +27,7 @@ std::optional<SettleCheckpoint> SettleCheckpoint::find(const std::string& caseDi
   const Dictionary d = Dictionary::readFile(state.string());
   SettleCheckpoint c;
   c.time = d.scalar("time", Range::nonNegative());
-  c.restartFile = d.word("restartFile", {kRestarts[0], kRestarts[1]});
+  c.restartFile = d.word("restartFile", {kRestarts[0], kRestarts[1], kNone});
   c.fingerprint = d.word("fingerprint", {});
   if (c.fingerprint != fingerprint) {
     out << "[dem] " << state.string() << ": a checkpoint of other settling inputs (fingerprint "
@@ -35,7 +35,14 @@ std::optional<SettleCheckpoint> SettleCheckpoint::find(const std::string& caseDi
         << std::endl;
     return std::nullopt;
   }
-  if (!fs::exists(fs::path(caseDir) / c.restartFile))
+  if (d.has("trials")) {
+    const std::vector<double> v = d.scalars("trials", Range::nonNegative());
+    if (v.size() % 2 != 0)
+      throw InputError(state.string() + ": entry 'trials': " + std::to_string(v.size()) +
+                       " numbers, expected (friction fraction) pairs");
+    for (size_t i = 0; i < v.size(); i += 2) c.trials.push_back({v[i], v[i + 1]});
+  }
+  if (c.restartFile != kNone && !fs::exists(fs::path(caseDir) / c.restartFile))
     throw InputError(state.string() + ": entry 'restartFile': " + c.restartFile +
                      ": cannot open file");
   return c;
@@ -51,6 +58,12 @@ void SettleCheckpoint::write(const std::string& caseDir) const {
       << "// the same inputs continues from here.\n"
       << "time        " << time << ";\nrestartFile \"" << restartFile << "\";\nfingerprint \""
       << fingerprint << "\";\n";
+    if (!trials.empty()) {
+      f << "trials     (";
+      for (size_t i = 0; i < trials.size(); ++i)
+        f << (i ? " " : "") << trials[i].friction << ' ' << trials[i].fraction;
+      f << ");   // earlier settles: friction, sample solid fraction\n";
+    }
   }
   fs::rename(path + ".tmp", path);
 }

@@ -4,18 +4,26 @@
 // that finds the checkpoint of the same inputs continues from it instead of starting again; the
 // settled sample removes it. The two restart files alternate, so a run killed while writing one
 // keeps the other and the state that names it.
+// With the packing control (demDict settle.packingControl friction) the state also lists the
+// earlier trials (friction, solid fraction), so the search goes on where it stopped; between two
+// trials it names no restart ("none"): the next trial starts from the loose fill.
 #pragma once
 
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
+
+#include "PackingSearch.h"
 
 namespace mixflow::dem {
 
 struct SettleCheckpoint {
-  double time = 0;          // s of settling
-  std::string restartFile;  // relative to the case directory
-  std::string fingerprint;  // of the settling inputs it was made from
+  double time = 0;                              // s of settling
+  std::string restartFile;                      // relative to the case directory
+  std::string fingerprint;                      // of the settling inputs it was made from
+  std::vector<PackingSearch::Trial> trials;     // finished trials of the packing control
+  static constexpr const char* kNone = "none";  // restartFile between two trials
 
   static std::string statePath(const std::string& caseDir);
   // The restart file of slot 0 or 1, relative to the case directory.

@@ -13,6 +13,7 @@
 #include "DemDriver.h"
 #include "Dictionary.h"
 #include "LiggghtsCommands.h"
+#include "PackingSearch.h"
 #include "SampleFill.h"
 #include "SceneProperties.h"
 #include "Schema.h"
@@ -61,6 +62,12 @@ std::string settleInputs(const Scene& s) {
   out << "# settling materials\n";
   addLines(out, materialCommands(st.particles, st.dem.youngModulusFactor, st.settle.friction, 0.0));
   addLines(out, settleGravityCommands(st));  // nothing for full gravity: older samples still match
+  // The friction above is the first trial's; the one found is an outcome (settled.state).
+  if (s.settle.packingControl == "friction")
+    out << "# packing control: settling friction searched from " << s.settle.friction << " in ["
+        << s.settle.minFriction << ", " << s.settle.maxFriction << "], at most "
+        << s.settle.maxSettles << " settles, until |sample fraction - " << s.sample.solidFraction
+        << "| <= " << s.settle.packingTolerance << " (search " << PackingSearch::kVersion << ")\n";
   out << "# settling: check every " << kSettleCheckInterval << " s, at most " << s.settle.maxTime
       << " s, until the mean kinetic energy < " << s.settle.kineticTolerance << " m g d\n";
   // A checkpoint's restart write re-runs LIGGGHTS' setup, which changes the trajectory at

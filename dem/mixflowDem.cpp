@@ -135,6 +135,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     if (rank == 0) std::cerr << "mixflowDem: input error: " << e.what() << std::endl;
     status = 2;
+  } catch (const dem::PackingMiss& e) {
+    if (rank == 0) std::cerr << "mixflowDem: sample preparation stopped: " << e.what() << std::endl;
+    status = 1;
   } catch (const std::exception& e) {
     if (rank == 0)
       std::cerr << "mixflowDem: run stopped: " << e.what()

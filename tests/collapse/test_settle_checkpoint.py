@@ -15,7 +15,11 @@ about 0.7 s):
      aside, continues the settle from it and finishes the collapse;
   5. the same for a stiffened settle (settle.stiffenFrom 1e-2 on tests/dem/stiffen_column, 241
      grains at 70/700 GPa): killed after its soft checkpoint at 0.3 s and run again, it gives the
-     uninterrupted sample byte for byte.
+     uninterrupted sample byte for byte;
+  6. the same for the packing control (settle.packingControl friction, first friction 0.7):
+     killed in its second settle, it continues there with the first settle's result (the
+     checkpoint's `trials`) and gives the uninterrupted sample byte for byte.
+Parts 1-5 settle once (packingControl off).
 """
 import filecmp
 import os
@@ -37,12 +41,13 @@ def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what, flush=True)
 
 
-def make(name, friction=None, source=("tests", "collapse", "column"), extra=""):
+def make(name, friction=None, source=("tests", "collapse", "column"), extra="", control="off"):
     d = os.path.join(work, name)
     shutil.rmtree(d, ignore_errors=True)
     shutil.copytree(os.path.join(root, *source), d)
     p = os.path.join(d, "system", "demDict")
     extra += f" friction {friction};" if friction is not None else ""
+    extra += f" packingControl {control};"
     text = re.sub(r"settle\s*\{[^}]*\}", "settle { maxTime 2; checkpointInterval 0.1;" + extra + " }",
                   open(p).read())
     open(p, "w").write(text)
@@ -64,14 +69,22 @@ def checkpoint_time(d):
     return float(m.group(1)) if m else None
 
 
-def kill_after_checkpoint(d, t_min):
-    """Starts the settle and kills it once its checkpoint is at t >= t_min."""
+def finished_trials(d):
+    """Settles of the packing control the checkpoint lists as finished."""
+    p = os.path.join(d, "dem", "settle.checkpoint.state")
+    m = re.search(r"^trials\s+\(([^)]*)\)", open(p).read(), re.M) if os.path.isfile(p) else None
+    return len(m.group(1).split()) // 2 if m else 0
+
+
+def kill_after_checkpoint(d, t_min, trials=0):
+    """Starts the settle and kills it once its checkpoint is at t >= t_min (in the settle after
+    `trials` finished ones of the packing control)."""
     p = subprocess.Popen([exe, "-case", d, "-settleOnly"], stdout=subprocess.DEVNULL,
                          stderr=subprocess.DEVNULL, env=env)
-    deadline = time.time() + 300
+    deadline = time.time() + 600
     while time.time() < deadline and p.poll() is None:
         t = checkpoint_time(d)
-        if t is not None and t >= t_min:
+        if t is not None and t >= t_min and finished_trials(d) >= trials:
             p.send_signal(signal.SIGKILL)
             p.wait()
             return t
@@ -132,6 +145,22 @@ check("settling continues from its checkpoint" in out and "stiffened to E = 7e+1
 for f in ("settled.state", "settled.restart", "settled.inputs"):
     check(filecmp.cmp(os.path.join(sa, "dem", f), os.path.join(sb, "dem", f), shallow=False),
           f"the continued stiffened settle's dem/{f} is the uninterrupted one's byte for byte")
+
+# 6. The packing control (settle.packingControl friction) checkpoints its search: killed in its
+#    second settle and run again, it goes on with the first settle's result and ends with A's
+#    sample byte for byte. From friction 0.7 the column needs more than one settle.
+pa = make("control_a", 0.7, control="friction")
+out_a = settle(pa)
+n_a = int(re.search(r"settles (\d+);", open(os.path.join(pa, "dem", "settled.state")).read()).group(1))
+check(n_a >= 2, f"the controlled settle from friction 0.7 takes {n_a} settles (at least 2)")
+pb = make("control_b", 0.7, control="friction")
+kill_after_checkpoint(pb, 0.2, trials=1)
+out = settle(pb)
+check("settling continues from its checkpoint" in out and "settle 1 at" not in out,
+      "the controlled settle continues in its second settle, without settling the first again")
+for f in ("settled.state", "settled.restart", "settled.inputs"):
+    check(filecmp.cmp(os.path.join(pa, "dem", f), os.path.join(pb, "dem", f), shallow=False),
+          f"the continued controlled settle's dem/{f} is the uninterrupted one's byte for byte")
 
 print("all checks passed" if not failures else f"{len(failures)} check(s) failed")
 sys.exit(1 if failures else 0)

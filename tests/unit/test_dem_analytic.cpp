@@ -3,11 +3,13 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "ContactTimes.h"
 #include "LiggghtsCommands.h"
 #include "Observables.h"
+#include "PackingSearch.h"
 
 using namespace mixflow::dem;
 
@@ -111,6 +113,64 @@ TEST(SettleGravity, BuoyantWeightOfAMixtureOnly) {
   EXPECT_NEAR(g, 9.81 * 0.6, 1e-6);
   s.fluidDensity = 0;  // dry
   EXPECT_TRUE(settleGravityCommands(s).empty());
+}
+
+// The packing control's search (demDict settle.packingControl friction) on known monotone φ(μ)
+// curves with a ±0.001 ripple standing for the packing's trial-to-trial noise.
+namespace {
+// Runs the search on phi(mu) with at most `settles` trials; returns it for inspection.
+template <class F>
+PackingSearch searchOn(F phi, double first, int settles, double minF = 0, double maxF = 1) {
+  PackingSearch s(0.6056, 0.003, minF, maxF, first);
+  for (int k = 0; k < settles && !s.landed(); ++k) {
+    const auto f = s.next();
+    if (!f) break;
+    EXPECT_GE(*f, minF);
+    EXPECT_LE(*f, maxF);
+    s.add(*f, phi(*f));
+  }
+  return s;
+}
+double ripple(double mu) { return 0.001 * std::sin(97.0 * mu); }
+}  // namespace
+
+// The reference tier's measured points (0.63, 0.61, 0.569 at μ 0, 0.1, 0.7) and a softer tier's
+// curve, denser by 0.02 and flatter at high friction: both land within the tolerance in the
+// default 6 settles from the default first friction 0.1 (each settle is a whole settle's cost).
+TEST(PackingSearch, LandsOnMonotoneCurves) {
+  const auto reference = [](double mu) {
+    return 0.63 - 0.0215 * std::log(1 + mu / 0.05) + ripple(mu);
+  };
+  const auto soft = [](double mu) { return 0.65 - 0.05 * std::sqrt(mu) + ripple(mu); };
+  for (const auto& phi :
+       {std::function<double(double)>(reference), std::function<double(double)>(soft)}) {
+    const PackingSearch s = searchOn(phi, 0.1, 6);
+    ASSERT_TRUE(s.landed()) << "after " << s.trials().size() << " settles";
+    EXPECT_NEAR(s.trials().back().fraction, 0.6056, 0.003);
+    EXPECT_LE(s.trials().size(), 4u);
+  }
+}
+
+// A target no friction in range reaches: the search ends at the bound, and says so.
+TEST(PackingSearch, StopsAtAnUnreachableTarget) {
+  const PackingSearch s = searchOn([](double mu) { return 0.64 - 0.01 * mu; }, 0.1, 10);
+  EXPECT_FALSE(s.landed());
+  EXPECT_FALSE(s.next().has_value());
+  EXPECT_DOUBLE_EQ(s.trials().back().friction, 1.0);
+  EXPECT_NE(s.whyNot().find("maxFriction"), std::string::npos) << s.whyNot();
+  const PackingSearch t = searchOn([](double mu) { return 0.58 - 0.01 * mu; }, 0.1, 10);
+  EXPECT_FALSE(t.next().has_value());
+  EXPECT_DOUBLE_EQ(t.trials().back().friction, 0.0);
+  EXPECT_NE(t.whyNot().find("minFriction"), std::string::npos) << t.whyNot();
+}
+
+// Noise larger than the tolerance (a looser sample at less friction) is reported, not chased.
+TEST(PackingSearch, ReportsNoiseAboveTheTolerance) {
+  PackingSearch s(0.6056, 0.003, 0, 1, 0.1);
+  s.add(0.1, 0.600);
+  s.add(0.2, 0.612);
+  EXPECT_FALSE(s.next().has_value());
+  EXPECT_NE(s.whyNot().find("noise"), std::string::npos) << s.whyNot();
 }
 
 int main(int argc, char** argv) {

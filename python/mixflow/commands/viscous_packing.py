@@ -8,8 +8,9 @@ usage: mixflow viscous-packing [--viscosity 4] [--loose 0.56:0.7]
 W+P at the reference tier with the liquid made Newtonian at --viscosity (Pa s; 4 is the paper's
 Bingham liquid's plastic viscosity, Stokes number sqrt(rho_p (rho_p - rho_f) g d^3) / (18 sqrt(2)
 mu) = 0.22: the viscous regime of Courrech du Pont et al. 2003, as Rondon's), settled dense (the
-case's settle.friction 0.1) and loose (--loose FRACTION:SETTLE_FRICTION: the target fraction sets
-the grain count, the settling friction the packing). For each: the runout (granular front - L)
+case's sample.solidFraction) and loose (--loose FRACTION:SETTLE_FRICTION: the packing control,
+demDict settle.packingControl, settles the sample to FRACTION starting from SETTLE_FRICTION, and
+stops naming settle.maxFriction if FRACTION lies beyond it). For each: the runout (granular front - L)
 at the end, the grains' potential energy released by 0.5, 1, 2 and 3 s, and the basal pore
 pressure under the initial column against hydrostatic per 0.1 s window (mixflow mixture-lambdas,
 which needs /usr/bin/python3 with numpy and h5py).

@@ -34,8 +34,10 @@ usage: mixflow yield-stress-results [--work runs/yield_stress] [--out results/yi
 3. With --packing F:MU,... (e.g. 0.58:0.3,0.56:0.7): W+P and HB+P at the reference tier with
    sample.solidFraction F and the settling friction settle.friction MU (`suite.py --tier
    reference --set sceneProperties.sample.solidFraction=F --set demDict.settle.friction=MU`,
-   WORK/packing-F-MU): the target fraction only sets the grain count, the settling friction sets
-   the packing (0.1, the default, settles to about 0.61). Against the reference-tier runs in
+   WORK/packing-F-MU): the packing control (demDict settle.packingControl friction) settles the
+   sample to F within settle.packingTolerance, starting from the settling friction MU (with
+   packingControl off, --set demDict.settle.packingControl=off, F sets the grain count only and
+   MU the packing). Against the reference-tier runs in
    --reference-work: the settled sample fraction, fronts at 3 s and the grains' released energy;
    summary.json "packing" (merged: packings not rerun keep their recorded entries), packing.csv.
 4. With --paper-window NAME=DIR,... (read only): finished paper-window runs of HB+P (made by
