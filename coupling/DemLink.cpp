@@ -25,8 +25,7 @@ const char* kStateId = "mixflowDragState";
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
 // over the one before(3) (v_ref: what the fluid step behind U saw), and 1 once a pushImplicit set
 // it (0 in a restart without the state), then the fluid sample of the drag laws (rho, mu, shear
-// rate, eps_f; eps_f 0: beta held), and the particle's total force(3) and torque(3) of the last
-// step (a restart holds no forces: a resumed run puts them back for its first step).
+// rate, eps_f; eps_f 0: beta held).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -41,9 +40,7 @@ enum State {
   kMeanVelocityRef = 24,
   kPushed = 27,
   kSample = 28,
-  kLastTotal = 32,
-  kLastTorque = 35,
-  kStateSize = 38
+  kStateSize = 32
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -98,17 +95,12 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   const bool repeat = step == lastCallStep_;
   lastCallStep_ = step;
   const double tau = static_cast<double>(step - intervalStart_) * dt;  // end of this step
-  if (restoreForces_ && step != intervalStart_) restoreForces_ = false;
-  if (restoreForces_) {
-    // The setup of a resumed run at its restart's step: the force and torque each particle had at
-    // that step in the run that wrote the restart (LIGGGHTS recomputes them from the full-step
-    // velocities; the run went on with those of the half step). This fix is the last force fix,
-    // so f holds every other force and the torque is complete.
+  if (holdState_) {
+    // The start-up setups of a resumed run: the restart's state stays as written (the first
+    // interval's setup computes this step's force, as the uninterrupted run's setup after its
+    // write did).
     for (int i = 0; i < nlocal; ++i)
-      for (int k = 0; k < 3; ++k) {
-        fexternal[i][k] = s[i][kLastTotal + k] - a->f[i][k];
-        a->torque[i][k] = s[i][kLastTorque + k];
-      }
+      for (int k = 0; k < 3; ++k) fexternal[i][k] = 0.0;
     return;
   }
   for (int i = 0; i < nlocal; ++i) {
@@ -142,8 +134,6 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
       si[kLastDrag + k] = drag;
       if (!repeat && tau > 0) si[kVelocitySum + k] += a->v[i][k];  // not a run's setup
       fexternal[i][k] = drag + fexp;
-      si[kLastTotal + k] = a->f[i][k] + fexternal[i][k];
-      si[kLastTorque + k] = a->torque[i][k];
     }
   }
 }
@@ -210,7 +200,7 @@ bool DemLink::adoptRestoredState() {
   int anyMissing = 0;
   MPI_Allreduce(&missing, &anyMissing, 1, MPI_INT, MPI_MAX, session_.lammps()->world);
   adopted_ = anyMissing == 0;
-  restoreForces_ = adopted_;
+  holdState_ = adopted_;
   intervalStart_ = session_.step();
   return adopted_;
 }
@@ -218,7 +208,11 @@ bool DemLink::adoptRestoredState() {
 bool DemLink::keepRestoredState() {
   if (!adopted_) return false;
   adopted_ = false;
-  // The setup runs since the restart called the drag at this step; the interval starts here.
+  holdState_ = false;
+  // The interval starts here, and its setup repeats the step the restart was written at, as the
+  // uninterrupted run's setup after the write did (its drag replaces the restart's last one for
+  // the second half step).
+  lastCallStep_ = session_.step();
   double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   for (int i = 0; i < n; ++i)

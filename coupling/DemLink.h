@@ -97,7 +97,7 @@ class DemLink {
   std::int64_t intervalStart_ = 0;  // DEM step of the last pushImplicit
   bool adopted_ = false;            // the restart's drag state is kept (adoptRestoredState)
   DragLaw law_;                     // empty: beta held over the interval
-  bool restoreForces_ = false;      // the setup at the restart's step takes the stored forces
+  bool holdState_ = false;          // resuming: setups before the first interval leave the state
 };
 
 }  // namespace mixflow::coupling

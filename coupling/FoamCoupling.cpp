@@ -275,7 +275,10 @@ void FoamCoupling::exchange() {
   clock_.time(StageClock::deposit, [&] { depositSources(x); });
   clock_.time(StageClock::totals,
               [&] { log_->reduce(assembly_->totals(), x.remote, x.counts, x.own, x.modelTotals); });
-  log_->write(exchanges_, link_->step(), MPI_Wtime() - wall0, clock_);
+  // Rows by time index (the uninterrupted run's, resumed or not); the resumed start's exchange
+  // repeats the one the stopped run logged at that time.
+  log_->write(mesh_.time().timeIndex(), link_->step(), MPI_Wtime() - wall0, clock_,
+              !(resume_ && exchanges_ == 0));
   clock_.clear();
   ++exchanges_;
 }
