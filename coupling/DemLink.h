@@ -59,12 +59,13 @@ class DemLink {
   void pushImplicit(const std::vector<AppliedDrag>& next);
   // implicit, resuming, before the setup run: true if the particles' restart held the drag state
   // a coupled run wrote with it (on every particle, every rank: pushImplicit marks it), which is
-  // then kept for the first interval instead of being zeroed; false for a restart without it
-  // (e.g. the settled sample's).
+  // then kept for the first interval instead of being zeroed (setups before it leave it as
+  // read); false for a restart without it (e.g. the settled sample's).
   bool adoptRestoredState();
   // implicit, at the first exchange of a resumed run: the adopted state drives the next interval
-  // as it would have without the stop (impulses restarted, as pushImplicit does); false, and
-  // nothing changed, if none was adopted.
+  // as it would have without the stop (impulses restarted, as pushImplicit does; the interval's
+  // setup repeats the write step's drag, as the uninterrupted run's setup after its write did);
+  // false, and nothing changed, if none was adopted.
   bool keepRestoredState();
   // implicit, after pushImplicit and before the interval runs: replaces the fluid velocity U of
   // local particle i (same order as the last pull) where has[i].
