@@ -7,10 +7,9 @@
 // scenes and resume" lists why each is needed); the particles' is a LIGGGHTS restart written at
 // the same step (contacts and their history included), in two alternating files so that a
 // failure while writing one leaves the other and its state file intact. The granular outputs'
-// counters come back from this file. The implicit drag's per-particle state (beta, U, explicit
-// force for the next interval, the last step's drag) is part of the LIGGGHTS restart, so the
-// resumed first interval runs as the uninterrupted one did (DemLink.h); the held drag's forces
-// are recomputed from the fluid at the written time.
+// counters come back from this file. The drag state (the held forces, or the implicit drag's
+// beta, U, explicit force for the next interval and last step's drag) is part of the LIGGGHTS
+// restart, so the resumed first interval runs as the uninterrupted one did (DemLink.h).
 #pragma once
 
 #include <string>

@@ -20,6 +20,9 @@ namespace mixflow::coupling {
 namespace {
 const char* kFixId = "mixflowFluidForce";
 const char* kStateId = "mixflowDragState";
+// Per-atom held force(3) and 1 once a push set it: the held drag's state in restarts.
+const char* kHeldId = "mixflowHeldForce";
+constexpr int kHeldPushed = 3;
 // Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3), 1 / m_f,
 // the fluid share's own acceleration(3), counterflow factor c, the sum of the particle's
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
@@ -54,6 +57,9 @@ DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
   if (!session_.lammps()->atom->tag_enable)
     throw std::runtime_error("coupling: LIGGGHTS atoms need IDs (atom_modify id yes)");
   if (mode_ == DragIntegration::held) {
+    // The held forces also in a per-atom array that restarts keep (fix external's array is not).
+    session_.command(std::string("fix ") + kHeldId + " all property/atom " + kHeldId +
+                     " vector yes no no 0 0 0 0");
     // pf/array 1: the array is added to the atoms' forces at every step; no callback.
     session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
     return;
@@ -71,9 +77,9 @@ DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
 
 double** DemLink::state() const {
   LAMMPS_NS::Modify* modify = session_.lammps()->modify;
-  const int i = modify->find_fix(kStateId);
-  if (i < 0)
-    throw std::runtime_error(std::string("coupling: LIGGGHTS fix ") + kStateId + " not found");
+  const char* id = mode_ == DragIntegration::held ? kHeldId : kStateId;
+  const int i = modify->find_fix(id);
+  if (i < 0) throw std::runtime_error(std::string("coupling: LIGGGHTS fix ") + id + " not found");
   return modify->fix[i]->array_atom;
 }
 
@@ -190,17 +196,21 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
 }
 
 bool DemLink::adoptRestoredState() {
-  if (mode_ != DragIntegration::implicit)
-    throw std::logic_error("coupling: adoptRestoredState needs dragIntegration implicit");
+  const bool held = mode_ == DragIntegration::held;
   double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   int missing = 0;
   for (int i = 0; i < n; ++i)
-    if (s[i][kPushed] != 1.0) ++missing;
+    if (s[i][held ? kHeldPushed : kPushed] != 1.0) ++missing;
   int anyMissing = 0;
   MPI_Allreduce(&missing, &anyMissing, 1, MPI_INT, MPI_MAX, session_.lammps()->world);
   adopted_ = anyMissing == 0;
-  holdState_ = adopted_;
+  if (held && adopted_) {
+    double** f = fix()->fexternal;
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) f[i][k] = s[i][k];
+  }
+  holdState_ = adopted_ && !held;
   intervalStart_ = session_.step();
   return adopted_;
 }
@@ -208,6 +218,7 @@ bool DemLink::adoptRestoredState() {
 bool DemLink::keepRestoredState() {
   if (!adopted_) return false;
   adopted_ = false;
+  if (mode_ == DragIntegration::held) return true;  // fix external holds the adopted forces
   holdState_ = false;
   // The interval starts here, and its setup repeats the step the restart was written at, as the
   // uninterrupted run's setup after the write did (its drag replaces the restart's last one for
@@ -279,13 +290,13 @@ void DemLink::push(const std::vector<Vec3>& forces) {
   if (mode_ != DragIntegration::held)
     throw std::logic_error("coupling: push needs dragIntegration held");
   LAMMPS_NS::FixExternal* f = fix();
+  double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   if (static_cast<int>(forces.size()) != n)
     throw std::runtime_error("coupling: force count differs from the local particle count");
   for (int i = 0; i < n; ++i) {
-    f->fexternal[i][0] = forces[i].x;
-    f->fexternal[i][1] = forces[i].y;
-    f->fexternal[i][2] = forces[i].z;
+    for (int k = 0; k < 3; ++k) f->fexternal[i][k] = s[i][k] = forces[i][k];
+    s[i][kHeldPushed] = 1.0;
   }
 }
 

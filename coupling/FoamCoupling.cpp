@@ -245,10 +245,10 @@ FoamCoupling::~FoamCoupling() = default;
 Foam::label FoamCoupling::exchangeEvery() const { return props_->exchangeEvery; }
 
 // A resumed run's first interval keeps the drag the stopped run had set for it (read back with
-// the particles' restart, DemLink.h), so it runs as it would have without the stop; the held
-// drag's forces (and a restart without the state) are recomputed from the fluid at the write.
+// the particles' restart, DemLink.h), so it runs as it would have without the stop; a restart
+// without that state gets the drag computed from the fluid at the write.
 void FoamCoupling::handToDem(Exchange& x) {
-  if (resume_ && exchanges_ == 0 && link_->mode() == DemLink::DragIntegration::implicit) {
+  if (resume_ && exchanges_ == 0) {
     if (link_->keepRestoredState()) {
       Foam::Info << "Coupling: resumed with the drag state of the particles' restart" << Foam::endl;
       return;
