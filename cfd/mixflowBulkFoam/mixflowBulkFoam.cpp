@@ -23,7 +23,6 @@
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
-#include "localIOdictionary.H"
 #include "pimpleControl.H"
 #include "subCycle.H"
 #include "turbulentTransportModel.H"
