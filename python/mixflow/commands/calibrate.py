@@ -20,12 +20,13 @@ Steps, each into WORK (default CASE-calibration):
      velocityProfile; bulk_model_results.bulk_velocity) into WORK/fronts.png, profiles.png,
      velocity.png and WORK/summary.json (drifts, their 16-84 % bootstrap interval, the weighted R^2
      of the fluid against lambda times the solid quantity, the front errors, the rms differences).
---skip-existing keeps a step's output when it exists (the h5 file, WORK/bulk's calibration JSON,
-a bulk run that reached its endTime). Bad input (no finished run, no fluid fields or particle
+--skip-existing keeps a step's output when it exists: the h5 file; the bulk case and its run
+(reached its endTime) when its calibration JSON holds the drifts calibrated now. Bad input (no finished run, no fluid fields or particle
 snapshots, a bad option) exits 2 naming the file or entry before anything runs.
 """
 
 import argparse
+import json
 import math
 import os
 import shutil
@@ -36,7 +37,7 @@ import numpy as np
 from mixflow import ROOT, bulkprops, foamcase, foamdict, outputs
 from mixflow.commands import calibrate_drifts as cd
 from mixflow.commands import mixture_lambdas as ml
-from mixflow.commands.bulk_model_results import bulk_velocity, profile
+from mixflow.commands.bulk_model_results import bulk_velocity, dem_front, profile
 
 TEMPLATE = os.path.join(ROOT, "docs", "extractDict")
 H5 = os.path.join("postProcessing", "mixture", "mixture.h5")
@@ -135,12 +136,11 @@ def compare(case, bulk, end):
     dem = outputs.read_rows(os.path.join(case, outputs.DEM_SERIES))
     blk = outputs.read_rows(os.path.join(bulk, outputs.LIQUID_SERIES))
     times = [round(k * FRONT_STEP_S, 9) for k in range(1, int(end / FRONT_STEP_S + 1e-9) + 1)]
-    fronts = [{"time_s": t, "cfd_dem_front_m": outputs.interpolated(dem, outputs.GRANULAR_FRONT, t),
+    fronts = [{"time_s": t, "cfd_dem_front_m": dem_front(dem, t),
                "bulk_front_m": outputs.interpolated(blk, outputs.LIQUID_FRONT, t)} for t in times]
     err = [f["bulk_front_m"] / f["cfd_dem_front_m"] - 1 for f in fronts]
     last = {"time_s": blk[-1][outputs.TIME], "bulk_front_m": blk[-1][outputs.LIQUID_FRONT],
-            "cfd_dem_front_m": outputs.interpolated(dem, outputs.GRANULAR_FRONT,
-                                                    min(blk[-1][outputs.TIME], end))}
+            "cfd_dem_front_m": dem_front(dem, blk[-1][outputs.TIME])}
     last["front_error"] = last["bulk_front_m"] / last["cfd_dem_front_m"] - 1
     profiles = []
     for share in PROFILE_SHARES:
@@ -260,7 +260,8 @@ def main(argv=None):
         print(f"[1/5] mixflowExtract -case {case} ({dict_path}: {extract_dict})", flush=True)
         ml.run_extract(case, build)
     cal_json = bulkprops.path(bulk) + ".calibration.json"
-    if not (a.skip_existing and os.path.exists(cal_json)):
+    keep = a.skip_existing and os.path.exists(cal_json)
+    if not keep:
         print(f"[2/5] bulk target {bulk}", flush=True)
         make_bulk_case(case, bulk, cell, end)
     print("[3/5] calibration of the drifts", flush=True)
@@ -272,9 +273,16 @@ def main(argv=None):
               "without --skip-existing)", file=sys.stderr)
         return 2
     print(cd.table(res), flush=True)
-    if not (a.skip_existing and os.path.exists(cal_json)):
+    if keep:  # the kept bulk run stands only for these drifts
+        with open(cal_json) as f:
+            kept = json.load(f)
+        keep = kept["pressure"] == res["pressure"] and all(
+            kept["drifts"][q]["value"] == r["value"] for q, r in res["drifts"].items())
+    if not keep:
         cd.write_target(bulk, res, case)
-    if not (a.skip_existing and bulk_finished(bulk, end)):
+    with open(cal_json) as f:
+        written = json.load(f)
+    if not (keep and bulk_finished(bulk, end)):
         print(f"[4/5] bulk run: {bulk}/Allrun 1", flush=True)
         foamcase.run_tool(["./Allrun", "1"], "mixflow calibrate", cwd=bulk)
     print("[5/5] comparison", flush=True)
@@ -283,7 +291,9 @@ def main(argv=None):
            "case": case, "work": work, "bulk_case": bulk, "extract_dict": extract_dict,
            "h5": h5, "sha256": res["sha256"], "estimator": res["estimator"],
            "pressure": res["pressure"], "selection": res["selection"],
-           "bulk_cell_size_m": cell,
+           "bulk_cell_size_m": cell, "solid_fraction": written["solid_fraction"],
+           "solid_fraction_from": written["solid_fraction_from"],
+           "drift_range": written["drift_range"],
            "bulk_solver_cpu_s": foamcase.last_execution_time(
                os.path.join(bulk, "log.mixflowBulkFoam")),
            "calibration": calibration_summary(res), "comparison": cmp}
