@@ -61,6 +61,7 @@ def check_case(case, end):
         if not os.path.exists(os.path.join(case, rel)):
             raise Refusal(f"{os.path.join(case, rel)}: missing ({what})")
     need(os.path.join("system", "cfdDict"), "a mixflow case has system/cfdDict")
+    need(os.path.join("constant", "sceneProperties"), "the scene: its channel sizes the grid")
     cfd = foamdict.read_dict(os.path.join(case, "system", "cfdDict"))
     if cfd.get("mixtureModel", "cfddem") == "bulk":
         raise Refusal(f"{case}/system/cfdDict: mixtureModel bulk is a bulk-model case; CASE is "
