@@ -1,5 +1,5 @@
-"""`mixflow calibrate` end to end on a short CFD-DEM run of cases/W+P-quick (0.6 s, about a
-minute): refusals before anything runs, then extraction (the shipped docs/extractDict fitted to
+"""`mixflow calibrate` end to end on a short CFD-DEM run of cases/W+P-quick (0.6 s, about
+30 s in all): refusals before anything runs, then extraction (the shipped docs/extractDict fitted to
 the case), calibration, the bulk run and the comparison.
 
 Asserted (each against what it is recomputed from, with why the tolerance):
