@@ -18,7 +18,8 @@ from . import ROOT
 VERBS = {
     "suite": ("suite", "run the scenes of Table 1 at a fidelity tier (docs/suite.md)"),
     "report": ("report", "the reproduction report of the scenes a suite run finished"),
-    "calibrate": ("calibrate_drifts", "the bulk model's drifts from a CFD-DEM run (docs/calibration.md)"),
+    "calibrate": ("calibrate", "a CFD-DEM case to a calibrated bulk run, compared (docs/calibration.md)"),
+    "calibrate-drifts": ("calibrate_drifts", "the bulk model's drifts from a CFD-DEM run (docs/calibration.md)"),
     "calibrate-solid": ("calibrate_solid", "the bulk model's solid rheology on the dry P"),
     "mixture-lambdas": ("mixture_lambdas", "drift coefficients of finished mixture runs (mixflowExtract)"),
     "bulk-stages": ("bulk_stages", "the bulk model at its calibration stages against CFD-DEM"),

@@ -12,7 +12,7 @@ import drift_data as dd  # noqa: E402
 from mixflow.cli import command  # noqa: E402
 from mixflow.synthcase import checker, write  # noqa: E402
 
-CMD = command("calibrate")
+CMD = command("calibrate-drifts")
 
 
 def main():

@@ -88,7 +88,7 @@ def main():
     bp = os.path.join(target, "constant", "bulkProperties")
     if os.path.exists(bp):
         os.remove(bp)
-    r = subprocess.run(command("calibrate") + [case,
+    r = subprocess.run(command("calibrate-drifts") + [case,
                         "--target", target], capture_output=True, text=True)
     print(r.stdout + r.stderr)
     check(r.returncode == 0, f"calibrate_drifts.py exits 0 (got {r.returncode})")

@@ -10,7 +10,7 @@ cfdDict.cellSize=...`) with the uncalibrated solid estimate (stage A0: lambda = 
 nu_s 0.03 m2/s); the same case with the solid block of --solid-from's constant/bulkProperties
 (stage A: lambda = 1, the solid rheology calibrated on the dry scene P by mixflow calibrate-solid,
 the bulk model's default); then stage A's case with the constant drifts calibrated from the
-CFD-DEM reference run's extraction, once per --estimators entry (stage B: `mixflow calibrate
+CFD-DEM reference run's extraction, once per --estimators entry (stage B: `mixflow calibrate-drifts
 REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B) or median (key
 B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
 mixflow mixture-lambdas) and run again (`./Allrun`); stage C: stage A's case with the drift
@@ -60,7 +60,7 @@ def drift_stage(rec, key, options, case_a, ref, ref_front, a):
     REC[KEY] (its result, or why it did not run), REC[KEY + '_calibration'] (the calibration's
     printout) and REC[KEY + '_drifts'] (its JSON)."""
     case = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
-    cal = run(command("calibrate") + [ref,
+    cal = run(command("calibrate-drifts") + [ref,
                "--target", case, "--flowing-factor", a.flowing_factor] + options, fatal=False)
     if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
         rec[key] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}

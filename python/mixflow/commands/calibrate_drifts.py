@@ -4,7 +4,7 @@ with --pressure porePressureRatio) from a finished CFD-DEM mixture case, written
 case's constant/bulkProperties `drifts` block with the closure (`pressure lambdaP;` or `pressure
 porePressureRatio;`).
 
-usage: mixflow calibrate SOURCE [--target CASE] [--estimator wls|median]
+usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median]
            [--pressure lambdaP|porePressureRatio]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]

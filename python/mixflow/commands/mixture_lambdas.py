@@ -23,7 +23,8 @@ postProcessing/mixture/mixture.h5:
     |u_s| cannot blow up;
   - the basal pore pressure under the initial column against hydrostatic (the extractor's
     p_f_excess and p_f_hydrostatic), per window up to 1 s (basal_pore_pressure).
-load() (the file's arrays) and wls_slope() are shared with mixflow calibrate.
+load() (the file's arrays) and wls_slope() are shared with mixflow calibrate-drifts, bin_counts()
+and run_extract() with mixflow calibrate.
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
 
@@ -44,10 +45,10 @@ LABEL = {"W+P": "W&P", "HB+P": "HB&P", "B+P": "B&P"}
 X_RANGE, Y_RANGE = 3.0, 0.72  # m, from the channel's origin
 
 
-def bin_counts(run_dir):
+def bin_counts(run_dir, x_range=X_RANGE, y_range=Y_RANGE):
     """Bins over X_RANGE and Y_RANGE no narrower than the run's fluid cell (cfdDict cellSize)."""
     cell = float(read_dict(os.path.join(run_dir, "system", "cfdDict"))["cellSize"].split()[0])
-    return int(X_RANGE / cell + 1e-9), int(Y_RANGE / cell + 1e-9)
+    return max(1, int(x_range / cell + 1e-9)), max(1, int(y_range / cell + 1e-9))
 
 
 def extract(run_dir, build):
@@ -58,6 +59,11 @@ def extract(run_dir, build):
                 f"grid {{ x (0 {X_RANGE!r} {nx}); y (0 {Y_RANGE!r} {ny}); }}\n"
                 "windows { start 0; width 0.1; }\n"
                 "fluid { source openfoam; }\n")
+    run_extract(run_dir, build)
+
+
+def run_extract(run_dir, build):
+    """mixflowExtract -case RUN_DIR -overwrite with its system/extractDict; exits on failure."""
     r = subprocess.run([os.path.join(build, "bin", "mixflowExtract"), "-case", run_dir,
                         "-overwrite"], capture_output=True, text=True)
     if r.returncode != 0:
