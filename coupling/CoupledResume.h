@@ -2,14 +2,14 @@
 // after a failure (or with a later endTime) `mixflowCoupled -resume` continues from the last
 // written time instead of starting again (scripts/ResumeFunctions, resumeMixtureCase).
 //
-// The fluid's state is its time directory (U, p_rgh, alpha, phi, the function objects' uniform/
-// state); the particles' is a LIGGGHTS restart written at the same step (contacts and their
-// history included), in two alternating files so that a failure while writing one leaves the
-// other and its state file intact. The granular outputs' counters come back from this file. The
-// implicit drag's per-particle state (beta, U, explicit force for the next interval) is part of
-// the LIGGGHTS restart, so the resumed first interval runs with the forces the stopped run had
-// set (DemLink.h); the held drag's forces are recomputed from the fluid at the written time
-// (tests/coupling/test_coupled_resume.py measures the difference to the uninterrupted run).
+// The fluid's state is its time directory (U, p_rgh, alpha, phi, rAUfLast, nu,
+// uniform/mixflowFoamState, the function objects' uniform/ state; coupling/README.md "Mixture
+// scenes and resume" lists why each is needed); the particles' is a LIGGGHTS restart written at
+// the same step (contacts and their history included), in two alternating files so that a
+// failure while writing one leaves the other and its state file intact. The granular outputs'
+// counters come back from this file. The drag state (the held forces, or the implicit drag's
+// beta, U, explicit force for the next interval and last step's drag) is part of the LIGGGHTS
+// restart, so the resumed first interval runs as the uninterrupted one did (DemLink.h).
 #pragma once
 
 #include <string>

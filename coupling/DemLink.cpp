@@ -20,13 +20,15 @@ namespace mixflow::coupling {
 namespace {
 const char* kFixId = "mixflowFluidForce";
 const char* kStateId = "mixflowDragState";
+// Per-atom held force(3) and 1 once a push set it: the held drag's state in restarts.
+const char* kHeldId = "mixflowHeldForce";
+constexpr int kHeldPushed = 3;
 // Per-atom implicit-drag state: beta, U(3), F_explicit(3), impulse(3), last drag(3), 1 / m_f,
 // the fluid share's own acceleration(3), counterflow factor c, the sum of the particle's
 // half-step velocities over this interval(3), its mean velocity over the last interval(3) and
 // over the one before(3) (v_ref: what the fluid step behind U saw), and 1 once a pushImplicit set
 // it (0 in a restart without the state), then the fluid sample of the drag laws (rho, mu, shear
-// rate, eps_f; eps_f 0: beta held), and the particle's total force(3) and torque(3) of the last
-// step (a restart holds no forces: a resumed run puts them back for its first step).
+// rate, eps_f; eps_f 0: beta held).
 enum State {
   kBeta = 0,
   kU = 1,
@@ -41,9 +43,7 @@ enum State {
   kMeanVelocityRef = 24,
   kPushed = 27,
   kSample = 28,
-  kLastTotal = 32,
-  kLastTorque = 35,
-  kStateSize = 38
+  kStateSize = 32
 };
 
 void implicitDragCallback(void* link, LAMMPS_NS::bigint step, int nlocal, LAMMPS_NS::tagint*,
@@ -57,6 +57,9 @@ DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
   if (!session_.lammps()->atom->tag_enable)
     throw std::runtime_error("coupling: LIGGGHTS atoms need IDs (atom_modify id yes)");
   if (mode_ == DragIntegration::held) {
+    // The held forces also in a per-atom array that restarts keep (fix external's array is not).
+    session_.command(std::string("fix ") + kHeldId + " all property/atom " + kHeldId +
+                     " vector yes no no 0 0 0 0");
     // pf/array 1: the array is added to the atoms' forces at every step; no callback.
     session_.command(std::string("fix ") + kFixId + " all external pf/array 1");
     return;
@@ -74,9 +77,9 @@ DemLink::DemLink(dem::LiggghtsSession& session, DragIntegration mode)
 
 double** DemLink::state() const {
   LAMMPS_NS::Modify* modify = session_.lammps()->modify;
-  const int i = modify->find_fix(kStateId);
-  if (i < 0)
-    throw std::runtime_error(std::string("coupling: LIGGGHTS fix ") + kStateId + " not found");
+  const char* id = mode_ == DragIntegration::held ? kHeldId : kStateId;
+  const int i = modify->find_fix(id);
+  if (i < 0) throw std::runtime_error(std::string("coupling: LIGGGHTS fix ") + id + " not found");
   return modify->fix[i]->array_atom;
 }
 
@@ -98,17 +101,12 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
   const bool repeat = step == lastCallStep_;
   lastCallStep_ = step;
   const double tau = static_cast<double>(step - intervalStart_) * dt;  // end of this step
-  if (restoreForces_ && step != intervalStart_) restoreForces_ = false;
-  if (restoreForces_) {
-    // The setup of a resumed run at its restart's step: the force and torque each particle had at
-    // that step in the run that wrote the restart (LIGGGHTS recomputes them from the full-step
-    // velocities; the run went on with those of the half step). This fix is the last force fix,
-    // so f holds every other force and the torque is complete.
+  if (holdState_) {
+    // The start-up setups of a resumed run: the restart's state stays as written (the first
+    // interval's setup computes this step's force, as the uninterrupted run's setup after its
+    // write did).
     for (int i = 0; i < nlocal; ++i)
-      for (int k = 0; k < 3; ++k) {
-        fexternal[i][k] = s[i][kLastTotal + k] - a->f[i][k];
-        a->torque[i][k] = s[i][kLastTorque + k];
-      }
+      for (int k = 0; k < 3; ++k) fexternal[i][k] = 0.0;
     return;
   }
   for (int i = 0; i < nlocal; ++i) {
@@ -142,8 +140,6 @@ void DemLink::implicitDrag(std::int64_t step, int nlocal, double** fexternal) {
       si[kLastDrag + k] = drag;
       if (!repeat && tau > 0) si[kVelocitySum + k] += a->v[i][k];  // not a run's setup
       fexternal[i][k] = drag + fexp;
-      si[kLastTotal + k] = a->f[i][k] + fexternal[i][k];
-      si[kLastTorque + k] = a->torque[i][k];
     }
   }
 }
@@ -200,17 +196,21 @@ void DemLink::pushImplicit(const std::vector<AppliedDrag>& next) {
 }
 
 bool DemLink::adoptRestoredState() {
-  if (mode_ != DragIntegration::implicit)
-    throw std::logic_error("coupling: adoptRestoredState needs dragIntegration implicit");
+  const bool held = mode_ == DragIntegration::held;
   double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   int missing = 0;
   for (int i = 0; i < n; ++i)
-    if (s[i][kPushed] != 1.0) ++missing;
+    if (s[i][held ? kHeldPushed : kPushed] != 1.0) ++missing;
   int anyMissing = 0;
   MPI_Allreduce(&missing, &anyMissing, 1, MPI_INT, MPI_MAX, session_.lammps()->world);
   adopted_ = anyMissing == 0;
-  restoreForces_ = adopted_;
+  if (held && adopted_) {
+    double** f = fix()->fexternal;
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) f[i][k] = s[i][k];
+  }
+  holdState_ = adopted_ && !held;
   intervalStart_ = session_.step();
   return adopted_;
 }
@@ -218,7 +218,12 @@ bool DemLink::adoptRestoredState() {
 bool DemLink::keepRestoredState() {
   if (!adopted_) return false;
   adopted_ = false;
-  // The setup runs since the restart called the drag at this step; the interval starts here.
+  if (mode_ == DragIntegration::held) return true;  // fix external holds the adopted forces
+  holdState_ = false;
+  // The interval starts here, and its setup repeats the step the restart was written at, as the
+  // uninterrupted run's setup after the write did (its drag replaces the restart's last one for
+  // the second half step).
+  lastCallStep_ = session_.step();
   double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   for (int i = 0; i < n; ++i)
@@ -289,13 +294,13 @@ void DemLink::push(const std::vector<Vec3>& forces) {
   if (mode_ != DragIntegration::held)
     throw std::logic_error("coupling: push needs dragIntegration held");
   LAMMPS_NS::FixExternal* f = fix();
+  double** s = state();
   const int n = session_.lammps()->atom->nlocal;
   if (static_cast<int>(forces.size()) != n)
     throw std::runtime_error("coupling: force count differs from the local particle count");
   for (int i = 0; i < n; ++i) {
-    f->fexternal[i][0] = forces[i].x;
-    f->fexternal[i][1] = forces[i].y;
-    f->fexternal[i][2] = forces[i].z;
+    for (int k = 0; k < 3; ++k) f->fexternal[i][k] = s[i][k] = forces[i][k];
+    s[i][kHeldPushed] = 1.0;
   }
 }
 

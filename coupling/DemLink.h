@@ -3,8 +3,9 @@
 // LIGGGHTS adds to f at every DEM step), held over the interval (`held`) or as a per-step backward
 // Euler drag from a callback (`implicit`); the formulas are in coupling/README.md "Drag
 // integration". The fix must be the last force fix (the callback reads the force summed so far).
-// The implicit state goes into LIGGGHTS restarts (keepRestoredState). fix external does not
-// initialise its array for atoms created during a run, so pull() stops a run whose atom count grew.
+// The drag state (the held forces, or the implicit drag's) goes into LIGGGHTS restarts
+// (keepRestoredState). fix external does not initialise its array for atoms created during a
+// run, so pull() stops a run whose atom count grew.
 #pragma once
 
 #include <cstdint>
@@ -57,14 +58,15 @@ class DemLink {
   void push(const std::vector<Vec3>& forces);
   // implicit: the next interval's beta, U and explicit force; resets the impulses.
   void pushImplicit(const std::vector<AppliedDrag>& next);
-  // implicit, resuming, before the setup run: true if the particles' restart held the drag state
-  // a coupled run wrote with it (on every particle, every rank: pushImplicit marks it), which is
-  // then kept for the first interval instead of being zeroed; false for a restart without it
-  // (e.g. the settled sample's).
+  // resuming, before the setup run: true if the particles' restart held the drag state a coupled
+  // run wrote with it (on every particle, every rank: push and pushImplicit mark it), which is
+  // then kept for the first interval instead of being zeroed (setups before it leave it as
+  // read); false for a restart without it (e.g. the settled sample's).
   bool adoptRestoredState();
-  // implicit, at the first exchange of a resumed run: the adopted state drives the next interval
-  // as it would have without the stop (impulses restarted, as pushImplicit does); false, and
-  // nothing changed, if none was adopted.
+  // at the first exchange of a resumed run: the adopted state drives the next interval
+  // as it would have without the stop (impulses restarted, as pushImplicit does; the interval's
+  // setup repeats the write step's drag, as the uninterrupted run's setup after its write did);
+  // false, and nothing changed, if none was adopted.
   bool keepRestoredState();
   // implicit, after pushImplicit and before the interval runs: replaces the fluid velocity U of
   // local particle i (same order as the last pull) where has[i]. step > 0: the drag sees the fluid
@@ -99,7 +101,7 @@ class DemLink {
   std::int64_t intervalStart_ = 0;  // DEM step of the last pushImplicit
   bool adopted_ = false;            // the restart's drag state is kept (adoptRestoredState)
   DragLaw law_;                     // empty: beta held over the interval
-  bool restoreForces_ = false;      // the setup at the restart's step takes the stored forces
+  bool holdState_ = false;          // resuming: setups before the first interval leave the state
 };
 
 }  // namespace mixflow::coupling

@@ -146,14 +146,16 @@ DemStart startDem(const Foam::fvMesh& mesh, const CouplingProperties& props,
 
   d.link = std::make_unique<DemLink>(*d.session, mode);
   // The external force array is not initialised by LIGGGHTS: zero it before a setup run.
-  // Resuming with the implicit drag: the restart's drag state is kept for the first interval.
+  // Resuming: the restart's drag state (held forces, or the implicit drag's) is kept for the
+  // first interval.
   const auto startDrag = [&] {
+    if (resume && d.link->adoptRestoredState()) return;
     std::vector<ParticleState> particles;
     std::vector<std::int64_t> tags;
     d.link->pull(particles, tags);
     if (d.link->mode() == DemLink::DragIntegration::held)
       d.link->push(std::vector<Vec3>(particles.size()));
-    else if (!(resume && d.link->adoptRestoredState()))
+    else
       d.link->pushImplicit(std::vector<AppliedDrag>(particles.size()));
   };
   startDrag();

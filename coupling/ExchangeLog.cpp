@@ -115,7 +115,8 @@ void ExchangeLog::reduce(const ExchangeTotals& t, double remote, const DragSchem
                   MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
-void ExchangeLog::write(long exchange, long demStep, double seconds, const StageClock& clock) {
+void ExchangeLog::write(long exchange, long demStep, double seconds, const StageClock& clock,
+                        bool row) {
   const std::vector<double>& T = totals_;
   const double vp = T[kParticleVolume];
   const double volumeError =
@@ -153,7 +154,7 @@ void ExchangeLog::write(long exchange, long demStep, double seconds, const Stage
                   << Foam::endl;
   }
 
-  if (!csv_.is_open() || exchange % logEvery_ != 0) return;
+  if (!row || !csv_.is_open() || exchange % logEvery_ != 0) return;
   csv_ << std::setprecision(17) << runTime_.value() << "," << demStep << ","
        << static_cast<long>(T[kParticles]) << "," << static_cast<long>(T[kParticlesOutside]);
   for (Total k : {kParticleVolume, kOutsideVolume, kClippedVolume, kFluidSeenVolume})

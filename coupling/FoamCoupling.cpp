@@ -251,10 +251,10 @@ FoamCoupling::~FoamCoupling() = default;
 Foam::label FoamCoupling::exchangeEvery() const { return props_->exchangeEvery; }
 
 // A resumed run's first interval keeps the drag the stopped run had set for it (read back with
-// the particles' restart, DemLink.h), so it runs as it would have without the stop; the held
-// drag's forces (and a restart without the state) are recomputed from the fluid at the write.
+// the particles' restart, DemLink.h), so it runs as it would have without the stop; a restart
+// without that state gets the drag computed from the fluid at the write.
 void FoamCoupling::handToDem(Exchange& x) {
-  if (resume_ && exchanges_ == 0 && link_->mode() == DemLink::DragIntegration::implicit) {
+  if (resume_ && exchanges_ == 0) {
     if (link_->keepRestoredState()) {
       Foam::Info << "Coupling: resumed with the drag state of the particles' restart" << Foam::endl;
       return;
@@ -281,7 +281,10 @@ void FoamCoupling::exchange() {
   clock_.time(StageClock::deposit, [&] { depositSources(x); });
   clock_.time(StageClock::totals,
               [&] { log_->reduce(assembly_->totals(), x.remote, x.counts, x.own, x.modelTotals); });
-  log_->write(exchanges_, link_->step(), MPI_Wtime() - wall0, clock_);
+  // Rows by time index (the uninterrupted run's, resumed or not); the resumed start's exchange
+  // repeats the one the stopped run logged at that time.
+  log_->write(mesh_.time().timeIndex(), link_->step(), MPI_Wtime() - wall0, clock_,
+              !(resume_ && exchanges_ == 0));
   clock_.clear();
   ++exchanges_;
 }

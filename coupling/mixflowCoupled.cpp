@@ -33,6 +33,7 @@
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "localIOdictionary.H"
 #include "pimpleControl.H"
 #include "subCycle.H"
 #include "turbulentTransportModel.H"
@@ -113,6 +114,19 @@ int runCoupled(int argc, char* argv[]) {
   }
 
   turbulence->validate();
+
+  // What a resumed run needs beyond the fields, written with them: the last pressure equation's
+  // 1/A on faces and whether eps_f changed in the last step (createFields.H), and the mixture
+  // viscosity the next exchange samples, that of the step's last mixture.correct() (before its
+  // momentum equation), which the mixture's construction would recompute from the written U.
+  rAUfLast.writeOpt() = IOobject::AUTO_WRITE;
+  solverState.writeOpt() = IOobject::AUTO_WRITE;
+  volScalarField& nuMixture = mesh.lookupObjectRef<volScalarField>("nu");
+  nuMixture.writeOpt() = IOobject::AUTO_WRITE;
+  if (resume) {
+    IOobject io("nu", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE, false);
+    if (io.typeHeaderOk<volScalarField>(true)) nuMixture == volScalarField(io, mesh);
+  }
 
   {
   // clang-format off

@@ -156,7 +156,8 @@ std::string controlDict(const LiquidCase& c) {
   else
     s << "deltaT          " << num(m.deltaT) << ";\nwriteControl    adjustable;\n";
   s << "purgeWrite      0;\n"
-    << "writeFormat     " << m.writeFormat << ";\nwritePrecision  10;\n"
+    << "writeFormat     " << m.writeFormat
+    << ";\nwritePrecision  17;   // every digit of a double: a restart reads the fields exactly\n"
     << "writeCompression off;\ntimeFormat      general;\ntimePrecision   8;\n"
     << "runTimeModifiable no;\nadjustTimeStep  " << (coupled ? "no" : "yes") << ";\n"
     << "maxCo           " << num(m.maxCo) << ";\n"

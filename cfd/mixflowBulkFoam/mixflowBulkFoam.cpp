@@ -23,6 +23,7 @@
 #include "fvOptions.H"
 #include "gaussConvectionScheme.H"
 #include "immiscibleIncompressibleTwoPhaseMixture.H"
+#include "localIOdictionary.H"
 #include "pimpleControl.H"
 #include "subCycle.H"
 #include "turbulentTransportModel.H"

@@ -20,7 +20,9 @@ On copies of the committed cases (their Allrun scripts with the programs of the 
      before anything is moved, saying "no space left on device" and naming the directory; a disk
      that fills during the run (a real 4 MB tmpfs when mounting is allowed, else a stand-in solver
      that leaves a half-written time directory and says ENOSPC's text) ends with "no space left on
-     device", the directory, no half-written time directory left, and the command to resume;
+     device", the directory, no half-written time directory left, and the command to resume; on
+     the real disk the solver itself stops before the write that would not fit (RunTime.H: the
+     free space against the last write's size), naming the directory and the last complete write;
   6. bulk-model drift fields clipped to the admissible bound alpha_s + lambda alpha_f >= 0.01
      (lambda_u = -1.5101419878296147 at alpha_s 0.6056, 17 digits as calibrate_drifts.py writes
      them) keep their value through decomposePar on 2 ranks (each rank's value within the bound;
@@ -223,6 +225,11 @@ def full_disk_case(case):
                     if not data or not re.search(rb"// \*+ //\s*$", data[-200:]):
                         half.append(os.path.join(dp, f))
     check(not half, f"no half-written time directory is left ({half[:3]})")
+    log = open(os.path.join(case, "log.mixflowFoam")).read()
+    stop = [ln for ln in log.splitlines() if "stopped before writing" in ln]
+    check(stop and case in stop[0] and "no space left on device" in stop[0]
+          and "error in IOstream" not in log,
+          f"the solver stops before the write that does not fit, naming the case ({stop[:1]})")
     return msg
 
 
