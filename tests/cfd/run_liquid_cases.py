@@ -48,16 +48,21 @@ mixflowFoam (serial, or decomposePar + mpirun -np 2 ... -parallel + reconstructP
                  (0.381, 0.281, 0.223 m). Pass:
                  - energy: kinetic energy <= potential energy released so far + 1e-4 E_p0 at every
                    step (measured excess <= 1e-5 E_p0, at the first steps);
-                 - no restart: once arrested (E_k < 1e-6 E_p0), E_k stays below 1e-5 E_p0 and the
-                   front advances by at most one cell (measured E_k <= 1e-6 E_p0, advance
+                 - no restart: once arrested (E_k < 1e-6 E_p0 held for ARREST_HOLD = 0.1 s,
+                   about 25 steps), E_k stays below 1e-5 E_p0 and the front advances by at most
+                   one cell. A single step below 1e-6 is not an arrest: the slump ends in a
+                   stick-slip creep whose E_k dips through 1e-6 for a step or two between slips
+                   (T = 50 on 2.5 mm cells: 6e-7 at 1.670 s, a slip to 4.2e-4 at 1.690 s, held
+                   below 1e-6 from 1.789 s, on a mesh whose points differ from the 10-digit
+                   mesh's by one unit in the last place) (measured E_k <= 1e-6 E_p0, advance
                    <= 3.7 mm at T = 20 (regularised creep), <= 1.4 mm otherwise). With a fixed
                    p_rgh tolerance of 1e-7 (cfdDict pressureTolerance 1e-7) T = 50 reaches
                    1.2 E_p0 and T = 100 11 E_p0 after arrest, T = 20 2.6e-2 E_p0;
                  - final front within 10 % of x_f (measured -2.7, -1.7, -6.2 %).
   yield-arrest-convergence  The T = 50 slump's final front on 5 mm cells against 2.5 mm cells
                  (maxDeltaT 0.01, D = 16000) and against maxDeltaT 0.0025 (5 mm): within 10 % (the
-                 theory's tolerance) and 2 %; measured 5.6 % (0.2759 against 0.2924 m, x_f
-                 0.2805 m between them) and 0.5 %. The regularised arrest converges at first
+                 theory's tolerance) and 2 %; measured 6.4 % (0.2759 against 0.2948 m, x_f
+                 0.2805 m between them) and 0.4 %. The regularised arrest converges at first
                  order: Richardson's estimate of the mesh-converged front is printed. Each refined
                  run passes the yield-arrest checks.
   outflow        Open channel 0.3 x 0.15 m, water column 0.1 x 0.1 m, 5 mm cells, 1.0 s: most of
@@ -178,6 +183,7 @@ def yield_slump(a, work):
 
 # ------------------------------------------------------------------ arrested yield-stress slumps
 ARREST_AREA = 0.1 * 0.1
+ARREST_HOLD = 0.1  # s: how long E_k stays below 1e-6 E_p0 to count as arrested
 
 
 def arrest_length(tau, rho=1000.0):
@@ -197,15 +203,28 @@ def run_arrest(a, work, tau, cell=0.005, max_dt=None, name=None):
     return run_case(a, case)
 
 
+def arrest_index(s, pe0):
+    """First row after 0.1 s from which E_k < 1e-6 E_p0 holds for ARREST_HOLD (None if none)."""
+    start = None
+    for i, r in enumerate(s):
+        if r["time_s"] <= 0.1 or r["kinetic_energy_J"] >= 1e-6 * pe0:
+            start = None
+        elif start is None:
+            start = i
+        if start is not None and r["time_s"] >= s[start]["time_s"] + ARREST_HOLD:
+            return start
+    return None
+
+
 def check_arrest(s, tau, cell, label):
     """The energy, no-restart and arrest-length checks; returns (ok, final front)."""
     pe0 = s[0]["potential_energy_J"]
     excess = max(r["kinetic_energy_J"] - (pe0 - r["potential_energy_J"]) for r in s)
     ok = check(excess <= 1e-4 * pe0, f"{label}: E_k - E_p released max {excess / pe0:+.2e} E_p0 "
                "(<= 1e-4)")
-    arrested = next((i for i, r in enumerate(s) if r["time_s"] > 0.1
-                     and r["kinetic_energy_J"] < 1e-6 * pe0), None)
-    ok &= check(arrested is not None, f"{label}: arrested (E_k < 1e-6 E_p0) at t = "
+    arrested = arrest_index(s, pe0)
+    ok &= check(arrested is not None, f"{label}: arrested (E_k < 1e-6 E_p0 for {ARREST_HOLD:g} s)"
+                " from t = "
                 f"{s[arrested]['time_s'] if arrested is not None else float('nan'):.3f} s")
     if arrested is None:
         return False, s[-1]["front_bed_m"]
