@@ -1,6 +1,8 @@
 """calibrate_drifts.py on a synthetic extraction with known drifts (drift_data.py): the wls
 estimator recovers them within 4 standard errors, the ratio median of lambda_u is pulled low by
-the slow bins, the bootstrap 16-84 % interval matches the least-squares standard error, the
+the slow bins, the flux estimator recovers lambda_u and finds its lambda_w ill-posed (vertical
+solid flux of both signs), --vertical auto then writes the isotropic drift, the mass balance of
+the data equals the extractor's, the bootstrap 16-84 % interval matches the least-squares standard error, the
 flowing criterion drops the slow bins, and the command writes bulkProperties and its JSON.
 
 usage: test_calibrate_recovery.py MIXFLOWEXTRACT WORKDIR"""
@@ -64,6 +66,41 @@ def main():
     check(ru["median"]["p84"] < dd.LU, f"lambda_u: the median's 16-84 % interval "
                                        f"[{ru['median']['p16']:.4f}, {ru['median']['p84']:.4f}] "
                                        f"excludes the true {dd.LU}")
+    # The flux-consistent estimator, sum alpha_f u_f / sum alpha_f u_s (alpha_f uniform here):
+    # unbiased, SE = sigma sqrt(n) / sum u_s.
+    se = dd.SIGMA_U * math.sqrt(n) / float(np.sum(t["us"]))
+    v = ru["flux"]["value"]
+    check(abs(v - dd.LU) <= 4 * se, f"lambda_u: flux {v:.4f} recovers {dd.LU} within 4 SE = "
+                                    f"{4 * se:.4f} (off by {abs(v - dd.LU):.4f})")
+    fu, fw = ru["fit"], res["drifts"]["lambda_w"]["fit"]
+    check(fu["well_posed"] and fu["r2"] >= 0.9 and fw["well_posed"] and fw["r2"] >= 0.9,
+          f"wls: lambda_u and lambda_w well-posed, R^2 {fu['r2']:.3f} and {fw['r2']:.3f} >= 0.9")
+    check(fu["r2_additive_slip"] < fu["r2"], f"lambda_u: the multiplicative drift fits better "
+          f"than an additive slip (R^2 {fu['r2']:.3f} against {fu['r2_additive_slip']:.3f})")
+    # w_s of both signs: the net vertical solid flux nearly cancels, so flux's lambda_w is
+    # ill-posed, and --vertical auto writes the isotropic drift, between LW and LU.
+    resf = cd.calibrate(case, estimator="flux", vertical="auto", n_boot=200)
+    rw = resf["drifts"]["lambda_w"]
+    share = rw["fit"]["solid_flux_net_share"]
+    check(not rw["fit"]["well_posed"] and share < cd.FLUX_CANCEL_MIN,
+          f"flux: lambda_w ill-posed, net vertical solid flux {share:.3f} of its magnitude "
+          f"< {cd.FLUX_CANCEL_MIN:g} ({'; '.join(rw['fit']['ill_posed_because'])})")
+    iso = rw["vertical"]["isotropic_value"]
+    check(rw["vertical"]["used"] == "isotropic" and rw["value"] == iso and dd.LW < iso < dd.LU,
+          f"--vertical auto: lambda_w written {rw['value']:.4f} = the isotropic drift, between "
+          f"{dd.LW} and {dd.LU} (fit {rw['vertical']['fit_value']:.4f} not used)")
+    resw = cd.calibrate(case, vertical="auto", n_boot=200)
+    check(resw["drifts"]["lambda_w"]["vertical"]["used"] == "fit",
+          "wls with --vertical auto keeps the well-posed lambda_w fit")
+    # The mass balance with the data's own fluxes, differenced here, equals the extractor's
+    # mass_balance_residual / _scale (mixture_extract/DriftCoefficients.cpp) over the same bins.
+    mres, mscale = f["mass_balance_residual"], f["mass_balance_scale"]
+    ok = np.isfinite(mres) & np.isfinite(mscale)
+    ext = float(np.sqrt(np.mean(mres[ok] ** 2)) / np.sqrt(np.mean(mscale[ok] ** 2)))
+    mb = res["mass_balance"]
+    check(mb["bins"] == int(ok.sum()) and abs(mb["data_residual_over_scale"] - ext) <= 1e-9 * ext,
+          f"mass balance of the data: {mb['data_residual_over_scale']:.6f} over {mb['bins']} bins "
+          f"= the extractor's {ext:.6f} over {int(ok.sum())}")
     sel = res["selection"]
     check(abs(sel["flowing_speed_m_s"] - 0.05 * math.sqrt(9.81 * 0.12)) < 1e-12,
           f"flowing threshold 0.05 sqrt(g H) = {sel['flowing_speed_m_s']:.5f} m/s (H 0.12 m)")

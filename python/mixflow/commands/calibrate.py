@@ -2,7 +2,8 @@
 (docs/calibration.md).
 
 usage: mixflow calibrate CASE [--work DIR] [--end T] [--skip-existing] [--cell-size DX]
-           [--pressure porePressureRatio|lambdaP] [--estimator wls|median] [--flowing-factor F]
+           [--pressure porePressureRatio|lambdaP] [--estimator wls|median|flux]
+           [--vertical auto|fit|isotropic] [--flowing-factor F]
 
 Steps, each into WORK (default CASE-calibration):
   1. extraction: mixflowExtract -case CASE -overwrite with CASE/system/extractDict; a case without
@@ -12,7 +13,9 @@ Steps, each into WORK (default CASE-calibration):
      bulk, dimensions 2, cellSize DX (default CASE's) and controlDict endTime T (default CASE's
      last written time), the bulk tier's recipe (cases/tiers/bulk) applied to this one case;
   3. calibration: the constant drifts of the extraction written into WORK/bulk's bulkProperties
-     (calibrate_drifts.calibrate and write_target; --pressure porePressureRatio by default);
+     (calibrate_drifts.calibrate and write_target; --pressure porePressureRatio and --vertical
+     auto by default: an ill-posed lambda_w is replaced by the isotropic drift, and the table says
+     so);
   4. the bulk run: WORK/bulk/Allrun 1;
   5. the comparison: fronts against time (CFD-DEM granular front_x_m, bulk front_bed_m), the
      surface h(x) at three times (CFD-DEM liquid, bulk mixture: postProcessing/liquid/
@@ -108,22 +111,25 @@ def make_bulk_case(case, bulk, cell_size, end):
     foamcase.set_entry(os.path.join(bulk, "system", "controlDict"), "endTime", repr(end))
 
 
-def r_squared(s, value):
-    """Weighted R^2 of the fluid quantity against VALUE x the solid one over the selected bins."""
-    x, y, w = s["x"], s["y"], s["w"]
-    ss_res = float(np.sum(w * (y - value * x) ** 2))
-    ss_tot = float(np.sum(w * (y - np.average(y, weights=w)) ** 2))
-    return 1 - ss_res / ss_tot if ss_tot > 0 else None
-
-
 def calibration_summary(res):
-    """Per drift: value, bootstrap interval, R^2, samples and bins, the per-bin ratios' spread."""
+    """Per drift: value, bootstrap interval, R^2 (of the fluid quantity against the value times
+    the solid one), samples and bins, the per-bin ratios' spread; the velocity drifts' fit
+    quality, lambda_w's rule and the mass balance with the drifts (calibrate_drifts)."""
     out = {}
     for q, r in res["drifts"].items():
         e = r[res["estimator"]]
-        out[q] = {"value": r["value"], "interval_16_84": [e["p16"], e["p84"]],
-                  "r2": r_squared(res["_samples"][q], r["value"]), "samples": r["samples"],
-                  "spatial_bins": r["spatial_bins"], "ratio_quantiles": r["ratio_quantiles"]}
+        interval = [e["p16"], e["p84"]]
+        if r.get("vertical", {}).get("used") == "isotropic":
+            interval = [r["vertical"]["isotropic_p16"], r["vertical"]["isotropic_p84"]]
+        s = res["_samples"][q]
+        out[q] = {"value": r["value"], "interval_16_84": interval,
+                  "r2": cd.fit_quality(s["x"], s["y"], s["w"], r["value"])[0],
+                  "samples": r["samples"], "spatial_bins": r["spatial_bins"],
+                  "ratio_quantiles": r["ratio_quantiles"]}
+        for k in ("fit", "vertical"):
+            if k in r:
+                out[q][k] = r[k]
+    out["mass_balance"] = res["mass_balance"]
     return out
 
 
@@ -227,6 +233,9 @@ def main(argv=None):
     ap.add_argument("--pressure", default="porePressureRatio",
                     help="calibrate-drifts --pressure (default porePressureRatio: no pole)")
     ap.add_argument("--estimator", default="wls", help="calibrate-drifts --estimator")
+    ap.add_argument("--vertical", default="auto",
+                    help="calibrate-drifts --vertical (default auto: lambda_w's fit if "
+                    "well-posed, else the isotropic drift)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="calibrate-drifts --flowing-factor (lower it for a slow flow)")
     a = ap.parse_args(argv)
@@ -244,6 +253,8 @@ def main(argv=None):
         cd.check_options(a.flowing_factor, 0.1, "particles", 1000, a.estimator)
         if a.pressure not in cd.PRESSURE:
             raise Refusal(f"--pressure {a.pressure}: allowed {', '.join(cd.PRESSURE)}")
+        if a.vertical not in cd.VERTICAL:
+            raise Refusal(f"--vertical {a.vertical}: allowed {', '.join(cd.VERTICAL)}")
         if work == case or work.startswith(case + os.sep):
             raise Refusal(f"--work {work}: inside CASE, whose inputs it copies; choose another")
     except (Refusal, cd.InputError, foamdict.DictError, KeyError) as e:
@@ -267,7 +278,8 @@ def main(argv=None):
         make_bulk_case(case, bulk, cell, end)
     print("[3/5] calibration of the drifts", flush=True)
     try:
-        res = cd.calibrate(h5, a.estimator, a.flowing_factor, pressure=a.pressure)
+        res = cd.calibrate(h5, a.estimator, a.flowing_factor, pressure=a.pressure,
+                           vertical=a.vertical)
     except cd.InputError as e:
         print(f"mixflow calibrate: error: {e}; for a slow flow lower --flowing-factor, or the "
               f"extraction's thresholds.minVelocity / minPressure in {dict_path} (then run again "
@@ -291,7 +303,7 @@ def main(argv=None):
     out = {"command": "mixflow calibrate " + " ".join(argv if argv is not None else sys.argv[1:]),
            "case": case, "work": work, "bulk_case": bulk, "extract_dict": extract_dict,
            "h5": h5, "sha256": res["sha256"], "estimator": res["estimator"],
-           "pressure": res["pressure"], "selection": res["selection"],
+           "pressure": res["pressure"], "vertical": a.vertical, "selection": res["selection"],
            "bulk_cell_size_m": cell, "solid_fraction": written["solid_fraction"],
            "solid_fraction_from": written["solid_fraction_from"],
            "drift_range": written["drift_range"],

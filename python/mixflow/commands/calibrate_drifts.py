@@ -4,8 +4,8 @@ with --pressure porePressureRatio) from a finished CFD-DEM mixture case, written
 case's constant/bulkProperties `drifts` block with the closure (`pressure lambdaP;` or `pressure
 porePressureRatio;`).
 
-usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median]
-           [--pressure lambdaP|porePressureRatio]
+usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median|flux]
+           [--pressure lambdaP|porePressureRatio] [--vertical fit|isotropic|auto]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
            [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
@@ -17,8 +17,20 @@ sqrt(u_s^2 + w_s^2) >= --flowing-factor * sqrt(g H), H the sample height (root a
 sample_height_m). Estimators: wls (default), the weighted least-squares slope through the origin
 of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention, for lambda_p; the
 excess pore pressure p_f_excess on the grains' load p_s + p_f_excess for chi); median, the median
-of the per-bin ratios. Uncertainty: the 16-84 % interval of the estimate over a bootstrap of the
-spatial bins (each drawn with all its windows). Prints a table; with --target writes
+of the per-bin ratios; flux, the flux-consistent ratio sum w alpha_f u_f / sum w alpha_f u_s
+(the liquid volume flux the drift gives equals the measured one over the selection; for the
+pressure drifts sum w y / sum w x). Uncertainty: the 16-84 % interval of the estimate over a
+bootstrap of the spatial bins (each drawn with all its windows). Goodness of fit, per velocity
+drift: R^2 of u_f against lambda u_s, the R^2 of an additive slip u_f = u_s + delta beside it,
+and the mixture mass balance (P-Eq. 9) with the calibrated drifts, d/dx[(alpha_s + lambda_u
+alpha_f) u_s] + d/dy[(alpha_s + lambda_w alpha_f) w_s], its RMS over the selected bins against
+the RMS of its scale |d/dx| + |d/dy| (the data's own residual, alpha_s u_s + alpha_f u_f, beside
+it). A drift is ill-posed when R^2 < 0.5, its 16-84 % interval is wider than its value, or (flux)
+the selected solid flux cancels (|sum w alpha_f x| < 0.1 sum w alpha_f |x|): small vertical
+speeds of both signs do that to lambda_w. --vertical: fit (default) writes lambda_w's own
+estimate; isotropic writes the one drift of both components (u_f = lambda u_s as vectors: the
+components' samples pooled); auto writes the fit when it is well-posed, else the isotropic
+drift, and says so. Prints a table; with --target writes
 CASE/constant/bulkProperties (created if absent; only the drifts entries change) and the JSON
 (default CASE/constant/bulkProperties.calibration.json). Bad input exits 2 before writing.
 --fields (with --target, whose mesh must exist: mixflowPrepare and blockMesh first) also writes
@@ -68,7 +80,12 @@ PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
 PRESSURE_DEFAULT = "lambdaP"
 # The ratio's range (cfd/mixflowBulkFoam/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
 RATIO_MIN, RATIO_MAX = -1.0, 1.0
-ESTIMATORS = ("wls", "median")
+ESTIMATORS = ("wls", "median", "flux")
+# The extractor's "outside the mixture" mask bits (mixture_extract/DriftCoefficients.h).
+OUTSIDE_MIXTURE = 1 | 2 | 4 | 8 | 16 | 2048
+VERTICAL = ("fit", "isotropic", "auto")
+# Ill-posed drift: R^2 below, 16-84 % interval wider than the value times, solid flux cancelling.
+R2_MIN, WIDTH_MAX, FLUX_CANCEL_MIN = 0.5, 1.0, 0.1
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 # prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
 # cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
@@ -184,8 +201,10 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
                 f"alpha_s >= {min_solid_fraction:g} (--min-solid-fraction, allowed [0, 1)) and "
                 f"solid speed >= {speed_min:.4g} m/s = {flowing_factor:g} sqrt(g H), H "
                 f"{H:g} m (--flowing-factor, allowed > 0)")
-        out[q] = {"x": x[m], "y": y[m], "w": wt[m], "block": block[m], "window": np.nonzero(m)[0],
-                  "mask": m, "x_all": x, "y_all": y, "w_all": wt}
+        af = f["alpha_f"] if q in ("lambda_u", "lambda_w") and "alpha_f" in f else np.ones_like(x)
+        m &= np.isfinite(af)
+        out[q] = {"x": x[m], "y": y[m], "w": wt[m], "af": af[m], "block": block[m],
+                  "window": np.nonzero(m)[0], "mask": m, "x_all": x, "y_all": y, "w_all": wt}
     used = np.unique(np.concatenate([s["window"] for s in out.values()]))
     selected = [(int(i), float(t0[i]), float(t1[i])) for i in np.nonzero(win)[0]]
     info = {"flowing_speed_m_s": speed_min, "sample_height_m": H, "g_m_s2": G,
@@ -193,11 +212,34 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
             "windows_used": [float(t0[used].min()), float(t1[used].max())],
             "windows_used_count": int(used.size), "windows_in_file": int(t0.size),
             "source_sample_solid_fraction": float(attrs.get("sample_solid_fraction", 0.0))}
+    info["_base"] = base  # the flowing bins of the selected windows, for the mass balance
     return out, info, selected
 
 
-def estimate(x, y, w, estimator):
-    return wls_slope(x, y, w) if estimator == "wls" else float(np.median(y / x))
+def flux_ratio(x, y, a):
+    """sum a y / sum a x (None when the denominator vanishes)."""
+    den = float(np.sum(a * x))
+    return float(np.sum(a * y)) / den if den != 0 else None
+
+
+def estimate(x, y, w, estimator, af=None):
+    if estimator == "wls":
+        return wls_slope(x, y, w)
+    if estimator == "flux":
+        return flux_ratio(x, y, w * (1.0 if af is None else af))
+    return float(np.median(y / x))
+
+
+def fit_quality(x, y, w, lam):
+    """Weighted R^2 of y against lam x and of the additive slip y = x + delta (delta the weighted
+    mean of y - x), each 1 - sum w r^2 / sum w (y - mean y)^2; None without spread in y."""
+    sw = float(np.sum(w))
+    ss = float(np.sum(w * (y - np.sum(w * y) / sw) ** 2)) if sw > 0 else 0.0
+    if not ss > 0 or lam is None:
+        return None, None, None
+    delta = float(np.sum(w * (y - x)) / sw)
+    return (1.0 - float(np.sum(w * (y - lam * x) ** 2)) / ss,
+            1.0 - float(np.sum(w * (y - x - delta) ** 2)) / ss, delta)
 
 
 def bootstrap(s, estimator, n_boot, seed):
@@ -209,6 +251,12 @@ def bootstrap(s, estimator, n_boot, seed):
     draws = rng.integers(0, nb, size=(n_boot, nb))
     mult = np.stack([np.bincount(r, minlength=nb) for r in draws]).astype(float)  # (boot, block)
     x, y, w = s["x"], s["y"], s["w"]
+    if estimator == "flux":
+        a = w * s.get("af", 1.0)
+        num = np.bincount(inv, weights=a * y, minlength=nb)
+        den = mult @ np.bincount(inv, weights=a * x, minlength=nb)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(den != 0, (mult @ num) / np.where(den != 0, den, 1.0), np.nan)
     if estimator == "wls":
         sxy = np.bincount(inv, weights=w * x * y, minlength=nb)
         sxx = np.bincount(inv, weights=w * x * x, minlength=nb)
@@ -227,11 +275,15 @@ def bootstrap(s, estimator, n_boot, seed):
 
 def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0.1,
               windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1,
-              pressure=PRESSURE_DEFAULT):
+              pressure=PRESSURE_DEFAULT, vertical="fit"):
     """The drifts of SOURCE (case directory or .h5): a dict with per drift the chosen estimate
-    ("value"), both estimators, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
-    counts, and the selection ("selection") and file ("h5", "sha256")."""
+    ("value"), every estimator, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
+    counts, the velocity drifts' fit quality and well-posedness, lambda_w's rule ("vertical"),
+    the mass balance with the drifts ("mass_balance"), and the selection ("selection") and file
+    ("h5", "sha256")."""
     check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator)
+    if vertical not in VERTICAL:
+        raise InputError(f"--vertical {vertical}: allowed {', '.join(VERTICAL)}")
     if pressure not in PRESSURE:
         raise InputError(f"--pressure {pressure}: allowed {', '.join(PRESSURE)}")
     h5 = find_h5(source)
@@ -241,6 +293,7 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         raise InputError(f"{h5}: not a mixflowExtract HDF5 file ({e})") from None
     sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
                                   pressure)
+    base = info.pop("_base")
     res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator, "pressure": pressure,
            "selection": dict(info, flowing_factor=flowing_factor,
                              min_solid_fraction=min_solid_fraction, weights=weights,
@@ -252,7 +305,7 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         r = {"samples": int(s["x"].size), "spatial_bins": int(np.unique(s["block"]).size),
              "ratio_quantiles": quantiles(s["y"] / s["x"])}
         for est in ESTIMATORS:
-            v = estimate(s["x"], s["y"], s["w"], est)
+            v = estimate(s["x"], s["y"], s["w"], est, s["af"])
             b = bootstrap(s, est, n_boot, seed)
             b = b[np.isfinite(b)]
             r[est] = {"value": v, "p16": float(np.quantile(b, 0.16)) if b.size else None,
@@ -260,21 +313,132 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         if r[estimator]["value"] is None:
             raise InputError(f"{h5}: {q}: the selected bins' {DRIFTS[q][2]} are all 0; no slope")
         r["value"] = r[estimator]["value"]
+        if q in ("lambda_u", "lambda_w"):
+            r["fit"] = posedness(s, r, estimator)
         res["drifts"][q] = r
+    vertical_rule(res, sel, estimator, vertical, n_boot, seed)
+    res["mass_balance"] = mass_balance(h5, d, base, res["drifts"]["lambda_u"]["value"],
+                                       res["drifts"]["lambda_w"]["value"])
     res["_samples"] = sel  # the full (window, y, x) selection, for --fields
     res["_windows"] = selected  # the windows inside --windows, for --per-window
     return res
 
 
+def posedness(s, r, estimator):
+    """A velocity drift's fit quality (fit_quality), the relative width of its 16-84 % interval,
+    the solid flux's cancellation (flux: |sum a x| / sum a |x|) and whether it is well-posed."""
+    x, y, w, a = s["x"], s["y"], s["w"], s["w"] * s["af"]
+    lam, e = r["value"], r[estimator]
+    r2, r2_add, delta = fit_quality(x, y, w, lam)
+    width = ((e["p84"] - e["p16"]) / abs(lam) if e["p16"] is not None and e["p84"] is not None
+             and lam else None)
+    cancel = float(abs(np.sum(a * x)) / np.sum(a * np.abs(x))) if np.sum(a * np.abs(x)) > 0 else 0.0
+    why = []
+    if r2 is None or r2 < R2_MIN:
+        why.append(f"R^2 {r2 if r2 is None else round(r2, 3)} < {R2_MIN:g}")
+    if width is None or width > WIDTH_MAX:
+        why.append(f"16-84 % interval {width if width is None else round(width, 3)} x the value "
+                   f"> {WIDTH_MAX:g}")
+    if estimator == "flux" and cancel < FLUX_CANCEL_MIN:
+        why.append(f"the solid flux cancels ({cancel:.3f} < {FLUX_CANCEL_MIN:g})")
+    return {"r2": r2, "r2_additive_slip": r2_add, "additive_slip_m_s": delta,
+            "interval_width_rel": width, "solid_flux_net_share": cancel, "well_posed": not why,
+            "ill_posed_because": why}
+
+
+def vertical_rule(res, sel, estimator, vertical, n_boot, seed):
+    """lambda_w as --vertical says: its fit, or the isotropic drift of both components pooled
+    (auto: the fit if well-posed). Records res["drifts"]["lambda_w"]["vertical"]."""
+    su, sw = sel["lambda_u"], sel["lambda_w"]
+    pooled = {k: np.concatenate([su[k], sw[k]]) for k in ("x", "y", "w", "af")}
+    pooled["block"] = np.concatenate([su["block"], sw["block"]])
+    if estimator == "flux":  # along each component's motion: the vertical flux cannot cancel
+        sign = np.sign(pooled["x"])
+        pooled["x"], pooled["y"] = pooled["x"] * sign, pooled["y"] * sign
+    iso = estimate(pooled["x"], pooled["y"], pooled["w"], estimator, pooled["af"])
+    b = bootstrap(pooled, estimator, n_boot, seed)
+    b = b[np.isfinite(b)]
+    rw = res["drifts"]["lambda_w"]
+    use_iso = vertical == "isotropic" or (vertical == "auto" and not rw["fit"]["well_posed"])
+    rw["vertical"] = {"rule": vertical, "used": "isotropic" if use_iso else "fit",
+                      "fit_value": rw["value"], "isotropic_value": iso,
+                      "isotropic_p16": float(np.quantile(b, 0.16)) if b.size else None,
+                      "isotropic_p84": float(np.quantile(b, 0.84)) if b.size else None}
+    if use_iso:
+        if iso is None:
+            raise InputError(f"{res['h5']}: --vertical {vertical}: the pooled solid velocities "
+                             "are all 0; no isotropic drift")
+        rw["value"] = iso
+
+
+def mass_balance(h5, d, base, lam_u, lam_w):
+    """P-Eq. 9 with constant drifts, d/dx[(alpha_s + lam_u alpha_f) u_s] + d/dy[(alpha_s + lam_w
+    alpha_f) w_s], as the extractor differences it (central between mixture bins, one-sided at
+    the mixture's edge): RMS over the BASE bins that have both derivatives, against the RMS of
+    the scale |d/dx| + |d/dy|; and the same for the data's own alpha_s u_s + alpha_f u_f."""
+    f = d["fields"]
+    with h5py.File(h5, "r") as h:
+        dx = float(np.diff(h["grid/x_edges"][()]).mean())
+        dy = float(np.diff(h["grid/y_edges"][()]).mean())
+        reasons = h["masks/reasons"][()] if "masks/reasons" in h else None
+    mix = (reasons & OUTSIDE_MIXTURE) == 0 if reasons is not None else np.isfinite(f["alpha_s"])
+
+    def deriv(g, axis, h):
+        gp, gm = np.roll(g, -1, axis), np.roll(g, 1, axis)
+        inp, inm = np.roll(mix, -1, axis), np.roll(mix, 1, axis)
+        n = g.shape[axis]
+        idx = np.arange(n).reshape([-1 if k == axis else 1 for k in range(g.ndim)])
+        inp = inp & (idx < n - 1)
+        inm = inm & (idx > 0)
+        with np.errstate(invalid="ignore"):
+            out = np.where(inp & inm, (gp - gm) / (2 * h),
+                           np.where(inp, (gp - g) / h, np.where(inm, (g - gm) / h, np.nan)))
+        return np.where(mix, out, np.nan)
+
+    def rms(mx, my):
+        ddx, ddy = deriv(mx, 2, dx), deriv(my, 1, dy)
+        ok = base & np.isfinite(ddx) & np.isfinite(ddy)
+        if not ok.any():
+            return None, 0
+        res_, scale = (ddx + ddy)[ok], (np.abs(ddx) + np.abs(ddy))[ok]
+        s = float(np.sqrt(np.mean(scale ** 2)))
+        return (float(np.sqrt(np.mean(res_ ** 2))) / s if s > 0 else None), int(ok.sum())
+
+    a_s, a_f = f["alpha_s"], f["alpha_f"]
+    cal, n = rms((a_s + lam_u * a_f) * f["u_s"], (a_s + lam_w * a_f) * f["w_s"])
+    own, _ = rms(a_s * f["u_s"] + a_f * f["u_f"], a_s * f["w_s"] + a_f * f["w_f"])
+    return {"residual_over_scale": cal, "data_residual_over_scale": own, "bins": n,
+            "lambda_u": lam_u, "lambda_w": lam_w}
+
+
 def table(res):
-    lines = [f"{'drift':19} {'value':>8} {'16%':>8} {'84%':>8}   {'wls':>8} {'median':>8}   "
-             f"{'ratio p10':>9} {'p50':>8} {'p90':>8} {'samples':>8} {'bins':>5}"]
+    def g(v):
+        return f"{v:8.4g}" if v is not None else f"{'-':>8}"
+
+    lines = [f"{'drift':19} {'value':>8} {'16%':>8} {'84%':>8}   {'wls':>8} {'median':>8} "
+             f"{'flux':>8}   {'ratio p10':>9} {'p50':>8} {'p90':>8} {'samples':>8} {'bins':>5}"]
     for q, r in res["drifts"].items():
         e, rq = r[res["estimator"]], r["ratio_quantiles"]
-        lines.append(f"{q:19} {r['value']:8.4g} {e['p16']:8.4g} {e['p84']:8.4g}   "
-                     f"{r['wls']['value']:8.4g} {r['median']['value']:8.4g}   {rq['p10']:9.4g} "
-                     f"{rq['median']:8.4g} {rq['p90']:8.4g} {r['samples']:8d} "
+        if r.get("vertical", {}).get("used") == "isotropic":
+            e = {"p16": r["vertical"]["isotropic_p16"], "p84": r["vertical"]["isotropic_p84"]}
+        lines.append(f"{q:19} {r['value']:8.4g} {g(e['p16'])} {g(e['p84'])}   "
+                     f"{g(r['wls']['value'])} {g(r['median']['value'])} {g(r['flux']['value'])}   "
+                     f"{rq['p10']:9.4g} {rq['median']:8.4g} {rq['p90']:8.4g} {r['samples']:8d} "
                      f"{r['spatial_bins']:5d}")
+    for q in ("lambda_u", "lambda_w"):
+        f = res["drifts"][q]["fit"]
+        lines.append(f"{q}: R^2 {g(f['r2']).strip()} (additive slip u_f = u_s + "
+                     f"{g(f['additive_slip_m_s']).strip()} m/s: R^2 "
+                     f"{g(f['r2_additive_slip']).strip()}), "
+                     + ("well-posed" if f["well_posed"] else
+                        "ill-posed: " + "; ".join(f["ill_posed_because"])))
+    v = res["drifts"]["lambda_w"]["vertical"]
+    lines.append(f"lambda_w written: {v['used']} (--vertical {v['rule']}; fit {g(v['fit_value']).strip()}, "
+                 f"isotropic {g(v['isotropic_value']).strip()})")
+    mb = res["mass_balance"]
+    lines.append(f"mass balance (P-Eq. 9) with these drifts: RMS residual / RMS scale "
+                 f"{g(mb['residual_over_scale']).strip()} over {mb['bins']} bins (the data's own "
+                 f"alpha_s u_s + alpha_f u_f: {g(mb['data_residual_over_scale']).strip()})")
     s = res["selection"]
     lines.append(f"estimator {res['estimator']} (16-84 % bootstrap over spatial bins, "
                  f"{s['bootstrap']} draws); flowing: solid speed >= {s['flowing_speed_m_s']:.4g} "
@@ -506,8 +670,10 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
     s = res["selection"]
     rel = os.path.relpath(res["h5"], source_arg) if os.path.isdir(source_arg) else res["h5"]
     where = (os.path.normpath(source_arg) + " " + rel) if os.path.isdir(source_arg) else rel
+    vert = res["drifts"]["lambda_w"].get("vertical", {}).get("used", "fit")
     source = (f"calibrate_drifts.py: {where} sha256 {res['sha256']}, estimator "
-              f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s")
+              f"{res['estimator']}, windows {s['windows_used'][0]:g}-{s['windows_used'][1]:g} s"
+              + (f", lambda_w {vert}" if vert != "fit" else ""))
     try:
         text = bulk_properties_text(path, drifts, source, tree.get("drifts", {}), fields,
                                     per_window, pressure)
@@ -545,7 +711,11 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("source", help="CFD-DEM case directory or its mixture.h5")
     ap.add_argument("--target", help="bulk case: writes its constant/bulkProperties drifts")
-    ap.add_argument("--estimator", default="wls")
+    ap.add_argument("--estimator", default="wls",
+                    help="wls (default), median or flux (sum alpha_f u_f / sum alpha_f u_s)")
+    ap.add_argument("--vertical", default="fit",
+                    help="lambda_w written: fit (default, its own estimate), isotropic (one "
+                    "drift of both components) or auto (the fit if well-posed, else isotropic)")
     ap.add_argument("--pressure", default=PRESSURE_DEFAULT,
                     help="the pore-pressure closure calibrated and written (bulkProperties "
                     "drifts.pressure): lambdaP (default, the closure of the committed stages) or "
@@ -588,7 +758,8 @@ def main(argv=None):
         if a.target:
             check_target(a.target)  # before the extraction is read: a bad target fails at once
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
-                        parse_windows(a.windows), a.weights, a.bootstrap, a.seed, a.pressure)
+                        parse_windows(a.windows), a.weights, a.bootstrap, a.seed, a.pressure,
+                        a.vertical)
         print(table(res))
         if a.target:
             for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,
