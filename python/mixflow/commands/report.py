@@ -736,9 +736,7 @@ def main(argv=None):
                "subcritical_after_arrival_s": {n: subcritical(sc[n])[1] for n in LIQUIDS + MIXTURES if sc[n].done},
                "energy_excess": {n: energy_excess(sc[n]) for n in fin},
                "figures": [n for n, _ in F.made], "figures_not_drawn": dict(F.skipped)}
-    with open(os.path.join(out, "summary.json"), "w") as f:
-        json.dump(clean(summary), f, indent=2)
-        f.write("\n")
+    outputs.write_json(os.path.join(out, "summary.json"), clean(summary), indent=2)
     print(f"report: {len(fin)} of {len(suite.TABLE1)} scenes finished; {len(F.made)} figures; "
           f"{sum(1 for r in rows if r['agrees'])} of {sum(1 for r in rows if r['agrees'] is not None)} "
           f"compared numbers agree; {os.path.join(out, 'report.md')}")
