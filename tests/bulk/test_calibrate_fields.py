@@ -32,9 +32,10 @@ FLOWING = 0.1  # 0.108 m/s: drops the slow bins (u_s 0.06-0.10), leaving some bi
 # (label, --windows, alpha_s of the target): the windows 0-0.06 s (3) leave one bin without a
 # flowing window; alpha_s 0.005 makes the range lambda >= 0.005025 (alpha_s + lambda alpha_f >=
 # 0.01), which the single window 0-0.02 s crosses in some bins (lambda_u down to -0.03).
-# --field-mean wls: per bin sum_t w x y / sum_t w x^2 instead of the ratios' mean.
+# --field-mean wls: per bin sum_t w x y / sum_t w x^2 instead of the ratios' mean; flux: per bin
+# sum_t w alpha_f y / sum_t w alpha_f x (the pressure drift without alpha_f).
 RUNS = (("time mean, fallback", "0:0.06", 0.6, "ratio"), ("clipped", "0:0.02", 0.005, "ratio"),
-        ("wls per bin", "0:0.06", 0.6, "wls"))
+        ("wls per bin", "0:0.06", 0.6, "wls"), ("flux per bin", "0:0.06", 0.6, "flux"))
 
 
 def target_case(case, blockmesh, alpha):
@@ -85,6 +86,11 @@ def expected(h5, constants, windows, how):
         if how == "wls":
             num = np.where(m, w * xs * ys, 0).sum(axis=0)
             den = np.where(m, w * xs * xs, 0).sum(axis=0)
+        elif how == "flux":
+            a = w * (f["alpha_f"] if q != "lambda_p" else 1.0)
+            num = np.where(m, a * ys, 0).sum(axis=0)
+            den = np.where(m, a * xs, 0).sum(axis=0)
+            den = np.where(den != 0, den, np.nan)
         else:
             num = np.where(m, w * np.nan_to_num(r), 0).sum(axis=0)
             den = np.where(m, w, 0).sum(axis=0)

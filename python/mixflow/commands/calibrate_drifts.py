@@ -204,7 +204,8 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
         af = f["alpha_f"] if q in ("lambda_u", "lambda_w") and "alpha_f" in f else np.ones_like(x)
         m &= np.isfinite(af)
         out[q] = {"x": x[m], "y": y[m], "w": wt[m], "af": af[m], "block": block[m],
-                  "window": np.nonzero(m)[0], "mask": m, "x_all": x, "y_all": y, "w_all": wt}
+                  "window": np.nonzero(m)[0], "mask": m, "x_all": x, "y_all": y, "w_all": wt,
+                  "af_all": af}
     used = np.unique(np.concatenate([s["window"] for s in out.values()]))
     selected = [(int(i), float(t0[i]), float(t1[i])) for i in np.nonzero(win)[0]]
     info = {"flowing_speed_m_s": speed_min, "sample_height_m": H, "g_m_s2": G,
@@ -490,8 +491,9 @@ def bulk_properties_text(path, drifts, source, block, fields=False, per_window=F
 
 def bin_means(s, how):
     """Per spatial bin (y, x) over the selected windows, NaN where the bin has none: the weighted
-    time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), or the wls slope of the bin's
-    windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less)."""
+    time mean of the ratio y/x, sum_t w (y/x) / sum_t w (ratio), the wls slope of the bin's
+    windows, sum_t w x y / sum_t w x^2 (wls: a window where the grains barely move weighs less),
+    or the bin's flux ratio sum_t w alpha_f y / sum_t w alpha_f x (flux)."""
     m = s["mask"]
     with np.errstate(invalid="ignore", divide="ignore"):
         x = np.where(m, s["x_all"], 0.0)
@@ -499,6 +501,10 @@ def bin_means(s, how):
         w = np.where(m, s["w_all"], 0.0)
         if how == "wls":
             num, den = (w * x * y).sum(axis=0), (w * x * x).sum(axis=0)
+        elif how == "flux":
+            a = w * np.where(m, s["af_all"], 0.0)
+            num, den = (a * y).sum(axis=0), (a * x).sum(axis=0)
+            return np.where(den != 0, num / np.where(den != 0, den, 1.0), np.nan)
         else:
             num = (w * np.where(m, y / np.where(m, x, 1.0), 0.0)).sum(axis=0)
             den = w.sum(axis=0)
@@ -545,7 +551,8 @@ def drift_fields(res, centres, lo, hi, how, window=None):
     return out
 
 
-FIELD_MEAN_TEXT = {"wls": "the wls slope of the windows", "ratio": "the weighted time mean of the ratios"}
+FIELD_MEAN_TEXT = {"wls": "the wls slope of the windows", "ratio": "the weighted time mean of the ratios",
+                   "flux": "the flux ratio of the windows"}
 
 
 def field_text(name, values, source, field_mean, location="constant"):
@@ -741,8 +748,9 @@ def main(argv=None):
                     "windows centred on it (odd, >= 1; default 1: its own alone)")
     ap.add_argument("--field-mean", default="wls",
                     help="--fields: per bin the wls slope of its windows (wls, default: the "
-                    "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge) "
-                    "or the weighted time mean of the ratios (ratio)")
+                    "ratios' mean lets W&P's lambda_w reach the range limit and the run diverge), "
+                    "the weighted time mean of the ratios (ratio) or the flux ratio sum alpha_f "
+                    "u_f / sum alpha_f u_s of its windows (flux)")
     a = ap.parse_args(argv)
     try:
         if a.fields and not a.target:
