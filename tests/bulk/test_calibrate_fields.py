@@ -90,11 +90,11 @@ def expected(h5, constants, windows, how):
             a = w * (f["alpha_f"] if q != "lambda_p" else 1.0)
             num = np.where(m, a * ys, 0).sum(axis=0)
             den = np.where(m, a * xs, 0).sum(axis=0)
-            den = np.where(den != 0, den, np.nan)
+            den = np.where(den != 0, den, np.nan)  # negative where the bin moves back
         else:
             num = np.where(m, w * np.nan_to_num(r), 0).sum(axis=0)
             den = np.where(m, w, 0).sum(axis=0)
-        mean = num / np.where(den > 0, den, np.nan)
+        mean = num / np.where(den != 0, den, np.nan)
         cells = np.empty(NX * NY)
         for j in range(NY):
             for i in range(NX):
