@@ -3,7 +3,9 @@ of W+P (run A) with prescribed drift fields that vary in space (lambda_u(x), lam
 y), bulkProperties drifts { fields on; pressure porePressureRatio; }) is turned into synthetic
 particles and fluid cells (synthcase.bin_field_case, one bin per bulk cell, one window per field
 write), extracted by mixflowExtract, calibrated back onto the same mesh by `mixflow
-calibrate-drifts --fields --pressure porePressureRatio`, and run again (run B).
+calibrate-drifts --fields --pressure porePressureRatio`, and run again (run B, chi over the
+bulk model's reference, --pore-reference mixture; run C, over the extractor's liquid surface,
+--pore-reference surface).
 
 What the synthetic data carry comes from the fields run A writes (cfd/mixflowBulkFoam
 writeBulkFields.H), each as the CFD-DEM quantity the extractor reads:
@@ -11,13 +13,12 @@ writeBulkFields.H), each as the CFD-DEM quantity the extractor reads:
              closure's P_s = P_f + sigma' / alpha_s), dumped as the LIGGGHTS per-particle virial;
   fluid:     velocity U.fluid, pressure P_f (p.fluid, Pa), liquid share alpha.liquid, air (p 0)
              above; a bin holds grains where alpha.liquid >= 0.5 (the solver's `inside`).
-Asserted: lambda_u and lambda_w come back exactly (to 1e-9) in every cell whose bin has a
-flowing sample (the data carry no noise), the constants inside the fitted range; chi comes back
-within CHI_TOL per cell (the extractor's hydrostatic is rho_f g (h_l - y) from the liquid surface,
-the solver's is rho_f p_m from the local mixture pressure: their difference in a flow is the
-measured bias); run B's front within 1 % of run A's at every write, its surface h(x, t) within
-1 % of the sample height. The same data with the stress dumped as the solid's partial pressure
-alpha_s P_s (a convention error) is extracted too: its chi is reported and asserted to miss.
+Asserted: in run B lambda_u, lambda_w and chi come back exactly (to 1e-9) in every cell whose
+bin has a flowing sample (the data carry no noise, so no interval is needed); run B's front
+within 1 % of run A's at every write, its surface h(x, t) within 1 % of the sample height. Run
+C's chi misses by more than CHI_MISS per cell and its h(x, t) by more than 1 %: the extractor's
+hydrostatic rho_f g (h_l - y) is not the bulk model's rho_f p_m in a flow (p_m / g (h_l - y) is
+printed), and the test tells the two apart.
 
 usage: test_round_trip.py BINDIR WORKDIR"""
 import json
@@ -32,14 +33,16 @@ from mixflow import ROOT, bulkprops, foamcase, foamdict, outputs, synthcase
 from mixflow.cli import command
 from mixflow.commands import calibrate_drifts as cd
 from mixflow.commands.calibrate import make_bulk_case
+from mixflow.commands.mixture_lambdas import load, quantiles
 from mixflow.synthcase import checker
 
 SCENE = os.path.join(ROOT, "cases", "W+P")
 CELL, END, WRITE = 0.06, 0.5, 0.05  # m, s, s: 98 x 20 cells; run A about 5 s
 ROWS = 14  # grid rows (0.84 m): the mixture (0.6 m) and air above it
 FLOWING = 0.005  # --flowing-factor: 0.012 m/s, so that nearly every moving bin is sampled
-CHI_TOL = 0.05  # per-cell |chi - prescribed| in the bins sampled
 FRONT_TOL, H_TOL = 0.01, 0.01  # run B against run A: front relative, h(x, t) / sample height
+H = 0.6  # m, W+P's sample height
+CHI_MISS = 0.05  # run C's chi off by more than this per cell on average
 
 
 def prescribed(x, y):
@@ -98,7 +101,7 @@ def written(case, nx, ny):
     return out
 
 
-def synthetic(case, fields, dx, dy, alpha_s, rho_s, rho_f, stress):
+def synthetic(case, fields, dx, dy, rho_s, rho_f, channel, stress):
     """The CFD-DEM stand-in of run A's FIELDS (synthcase.bin_field_case), extracted. STRESS(w):
     the contact stress per bulk volume the particles dump, from one write's fields."""
     def stack(f):
@@ -107,7 +110,7 @@ def synthetic(case, fields, dx, dy, alpha_s, rho_s, rho_f, stress):
         case, stack(lambda w: w["us"][..., 0]), stack(lambda w: w["us"][..., 1]), stack(stress),
         stack(lambda w: w["uf"][..., 0]), stack(lambda w: w["uf"][..., 1]),
         stack(lambda w: w["pf"]), dx=dx, dy=dy, window=WRITE, start=fields[0]["t"] - WRITE / 2,
-        H=0.6, rho_s=rho_s, rho_f=rho_f, liquid=stack(lambda w: w["alpha"]), channel=(5.86, 1.2))
+        H=H, rho_s=rho_s, rho_f=rho_f, liquid=stack(lambda w: w["alpha"]), channel=channel)
     exe = os.path.join(os.environ["MIXFLOW_BUILD"], "bin", "mixflowExtract")
     r = subprocess.run([exe, "-case", case], capture_output=True, text=True)
     if r.returncode != 0:
@@ -115,17 +118,17 @@ def synthetic(case, fields, dx, dy, alpha_s, rho_s, rho_f, stress):
     return os.path.join(case, cd.H5_IN_CASE)
 
 
-def sampled_cells(h5, key):
-    """Cells (j nx + i, rows above the grid never) whose bin has a sample of the drift KEY in the
-    calibration's selection (calibrate_drifts.calibrate with the test's options)."""
-    res = cd.calibrate(h5, flowing_factor=FLOWING, n_boot=10, pressure="porePressureRatio")
+def sampled_cells(h5, key, alpha_s, reference):
+    """Bins (ROWS, nx) that have a sample of the drift KEY in the calibration's selection
+    (calibrate_drifts.calibrate with the test's options)."""
+    res = cd.calibrate(h5, flowing_factor=FLOWING, n_boot=10, pressure="porePressureRatio",
+                       solid_fraction=alpha_s, pore_reference=reference)
     q = next(q for q, v in cd.DRIFTS.items() if v[0] == key)
     return res["_samples"][q]["mask"].any(axis=0)
 
 
 def series(case):
-    rows = outputs.read_rows(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"))
-    return rows
+    return outputs.read_rows(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"))
 
 
 def profiles(case):
@@ -167,55 +170,80 @@ def main():
 
     # The stand-in CFD-DEM case: the grains' contact stress sigma' = alpha_s (P_s - P_f).
     dem = os.path.join(work, "dem")
-    h5 = synthetic(dem, fields, dx, dy, alpha_s, rho_s, rho_f,
+    channel = tuple(float(scene["channel"][k].split()[0]) for k in ("length", "height"))
+    h5 = synthetic(dem, fields, dx, dy, rho_s, rho_f, channel,
                    lambda w: alpha_s * (w["ps"] - w["pf"]))
 
-    # Run B: calibrated onto the same mesh.
-    b = os.path.join(work, "B")
-    bulk_case(b)
-    cmd = command("calibrate-drifts") + [
-        dem, "--target", b, "--fields", "--pressure", "porePressureRatio", "--field-mean", "wls",
-        "--flowing-factor", str(FLOWING), "--bootstrap", "200"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    print(r.stdout + r.stderr)
-    check(r.returncode == 0, f"calibrate-drifts --fields exits 0 (got {r.returncode})")
-    if r.returncode != 0:
-        return 1
-    with open(bulkprops.path(b) + ".calibration.json") as f:
-        cal = json.load(f)
-    report = {"drifts": {}}
-    for key in truth:
-        got = np.array(foamcase.read_internal_field(os.path.join(b, "constant", key)))
-        sampled = np.zeros(nx * ny, bool)
-        sampled[:ROWS * nx] = sampled_cells(h5, key).ravel()
-        err = np.abs(got - truth[key])[sampled]
-        report["drifts"][key] = {"cells_sampled": int(sampled.sum()),
-                                 "max_abs_error": float(err.max()), "mean_abs_error": float(err.mean())}
-        print(f"{key}: {sampled.sum()} cells from a sampled bin, |calibrated - prescribed| max "
-              f"{err.max():.3g}, mean {err.mean():.3g}")
-    for key in ("lambdaU", "lambdaW"):
-        e = report["drifts"][key]["max_abs_error"]
-        check(e <= 1e-9, f"{key}: every sampled cell exact (max |diff| {e:.2e} <= 1e-9)")
-    e = report["drifts"]["porePressureRatio"]["max_abs_error"]
-    check(e <= CHI_TOL, f"porePressureRatio: every sampled cell within {CHI_TOL:g} "
-          f"(max |diff| {e:.3g})")
-    run(b)
-    fa, fb = series(a), series(b)
-    errs = []
-    for k in range(1, round(END / WRITE) + 1):
-        t = k * WRITE
-        xa = outputs.interpolated(fa, "front_bed_m", t)
-        xb = outputs.interpolated(fb, "front_bed_m", t)
-        errs.append(abs(xb / xa - 1))
-    check(max(errs) <= FRONT_TOL, f"front: run B against run A at every {WRITE:g} s, max "
-          f"relative difference {max(errs):.2e} (<= {FRONT_TOL:g})")
-    pa, pb = profiles(a), profiles(b)
-    dh = max(float(np.max(np.abs(pa[t][:, 1] - pb[t][:, 1]))) for t in pa)
-    check(dh <= H_TOL * 0.6, f"h(x, t): max |h_B - h_A| {dh:.3g} m (<= {H_TOL:g} x 0.6 m)")
-    report.update(front_error=max(errs), h_error_m=dh)
+    # The extractor's hydrostatic (liquid surface) against the bulk model's rho_f p_m: p_m
+    # = p_total / rho_m over g (h_l - y) in the mixture bins.
+    d = load(h5)
+    f = d["fields"]
+    rho_m = alpha_s * rho_s + (1 - alpha_s) * rho_f
+    mixed = (np.isfinite(f["p_f_hydrostatic"]) & np.isfinite(f["p_total"]) & (f["alpha_s"] > 0.1)
+             & (f["p_f_hydrostatic"] > 0))
+    share = (f["p_total"] / rho_m / (f["p_f_hydrostatic"] / rho_f))[mixed]
+    report = {"p_m_over_g_h": quantiles(share), "runs": {}}
+    print(f"p_m / g (h_l - y) over {share.size} mixture bins: {report['p_m_over_g_h']}")
+
+    # Run B: calibrated onto the same mesh with chi over the bulk model's reference; run C over
+    # the extractor's liquid surface.
+    for label, reference in (("B", "mixture"), ("C", "surface")):
+        case = os.path.join(work, label)
+        report["runs"][label] = rec = calibrated_run(check, case, dem, h5, reference, truth,
+                                                     centres, nx, ny, alpha_s, a)
+        if rec is None:
+            return 1
+    b, c = report["runs"]["B"], report["runs"]["C"]
+    for key in ("lambdaU", "lambdaW", "porePressureRatio"):
+        e = b["drifts"][key]["max_abs_error"]
+        check(e <= 1e-9, f"B: {key}: every cell of a sampled bin exact (max |diff| {e:.2e} "
+              "<= 1e-9: the synthetic data carry no noise)")
+    check(b["front_error"] <= FRONT_TOL, f"B: front against run A at every {WRITE:g} s: max "
+          f"relative difference {b['front_error']:.2e} (<= {FRONT_TOL:g})")
+    check(b["h_error_m"] <= H_TOL * H, f"B: h(x, t): max |h_B - h_A| {b['h_error_m']:.3g} m "
+          f"(<= {H_TOL:g} x {H:g} m)")
+    e = c["drifts"]["porePressureRatio"]["mean_abs_error"]
+    check(e > CHI_MISS and c["h_error_m"] > H_TOL * H,
+          f"C (the surface reference, not the bulk model's): chi misses by {e:.3g} per cell on "
+          f"average (> {CHI_MISS:g}), h(x, t) by {c['h_error_m']:.3g} m (> {H_TOL:g} x {H:g} m): "
+          "the round trip tells the conventions apart")
     print(json.dumps(report, indent=1))
     print("PASS" if not failures else f"FAIL: {len(failures)} checks")
     return 1 if failures else 0
+
+
+def calibrated_run(check, case, dem, h5, reference, truth, centres, nx, ny, alpha_s, a):
+    """CASE: the bulk case calibrated from DEM with --pore-reference REFERENCE, run and compared
+    with run A: per drift the cells of sampled bins against TRUTH, the front and h(x, t)."""
+    bulk_case(case)
+    cmd = command("calibrate-drifts") + [
+        dem, "--target", case, "--fields", "--pressure", "porePressureRatio", "--field-mean",
+        "wls", "--pore-reference", reference, "--flowing-factor", str(FLOWING), "--bootstrap",
+        "200"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    print(r.stdout + r.stderr)
+    check(r.returncode == 0, f"calibrate-drifts --fields --pore-reference {reference} exits 0 "
+          f"(got {r.returncode})")
+    if r.returncode != 0:
+        return None
+    rec = {"pore_reference": reference, "drifts": {}}
+    for key in truth:
+        got = np.array(foamcase.read_internal_field(os.path.join(case, "constant", key)))
+        sampled = np.zeros(nx * ny, bool)
+        sampled[:ROWS * nx] = sampled_cells(h5, key, alpha_s, reference).ravel()
+        err = np.abs(got - truth[key])[sampled]
+        rec["drifts"][key] = {"cells_sampled": int(sampled.sum()),
+                              "max_abs_error": float(err.max()),
+                              "mean_abs_error": float(err.mean())}
+    run(case)
+    fa, fb = series(a), series(case)
+    rec["front_error"] = max(
+        abs(outputs.interpolated(fb, "front_bed_m", k * WRITE) /
+            outputs.interpolated(fa, "front_bed_m", k * WRITE) - 1)
+        for k in range(1, round(END / WRITE) + 1))
+    pa, pb = profiles(a), profiles(case)
+    rec["h_error_m"] = max(float(np.max(np.abs(pa[t][:, 1] - pb[t][:, 1]))) for t in pa)
+    return rec
 
 
 if __name__ == "__main__":
