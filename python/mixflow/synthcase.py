@@ -61,7 +61,8 @@ def vtk(path, x, v, mass, radius, stress, drop=(), ids=None):
     """stress: (n, 6) xx yy zz xy xz yz (N m, LAMMPS sign). drop: array names to leave out.
     ids: the particles' ids (default 1 to n)."""
     n = len(x)
-    arrays = [("id", np.arange(1, n + 1) if ids is None else np.asarray(ids), "%d"), ("type", np.ones(n, int), "%d"),
+    ids = np.arange(1, n + 1) if ids is None else np.asarray(ids)
+    arrays = [("id", ids, "%d"), ("type", np.ones(n, int), "%d"),
               ("mass", mass, "%.17g"), ("v", v, "%.17g"), ("f", np.zeros((n, 3)), "%.6g"),
               ("radius", radius, "%.17g"), ("omega", np.zeros((n, 3)), "%.6g"),
               ("c_pstress[1-3]", stress[:, :3], "%.17g"), ("c_pstress[4-6]", stress[:, 3:], "%.17g")]

@@ -91,7 +91,8 @@ def written(case, nx, ny):
         d = os.path.join(case, name)
 
         def scalar(f):
-            return np.array(foamcase.read_internal_field(os.path.join(d, f), n)).reshape(ny, nx)[:ROWS]
+            v = foamcase.read_internal_field(os.path.join(d, f), n)
+            return np.array(v).reshape(ny, nx)[:ROWS]
 
         def vector(f):
             return np.array(foamcase.read_internal_field(os.path.join(d, f), n))[:, :2].reshape(
