@@ -57,10 +57,12 @@ def _block(name, arr, fmt):
     return f"{name} {arr.shape[1]} {arr.shape[0]} {typ}\n{body}\n"
 
 
-def vtk(path, x, v, mass, radius, stress, drop=()):
-    """stress: (n, 6) xx yy zz xy xz yz (N m, LAMMPS sign). drop: array names to leave out."""
+def vtk(path, x, v, mass, radius, stress, drop=(), ids=None):
+    """stress: (n, 6) xx yy zz xy xz yz (N m, LAMMPS sign). drop: array names to leave out.
+    ids: the particles' ids (default 1 to n)."""
     n = len(x)
-    arrays = [("id", np.arange(1, n + 1), "%d"), ("type", np.ones(n, int), "%d"),
+    ids = np.arange(1, n + 1) if ids is None else np.asarray(ids)
+    arrays = [("id", ids, "%d"), ("type", np.ones(n, int), "%d"),
               ("mass", mass, "%.17g"), ("v", v, "%.17g"), ("f", np.zeros((n, 3)), "%.6g"),
               ("radius", radius, "%.17g"), ("omega", np.zeros((n, 3)), "%.6g"),
               ("c_pstress[1-3]", stress[:, :3], "%.17g"), ("c_pstress[4-6]", stress[:, 3:], "%.17g")]
@@ -179,59 +181,68 @@ def drift_case(case, snap_times, fluid_times, partners=None, extract_dict="", co
 
 
 def bin_field_case(case, us, ws, ps, uf, wf, pf, dx=0.05, dy=0.05, window=0.02, W=0.06, d=0.012,
-                   H=0.12, rho_s=2500.0, rho_f=1000.0, gas_pressure=None):
+                   H=0.12, rho_s=2500.0, rho_f=1000.0, gas_pressure=None, start=0.0, liquid=None,
+                   channel=(1.0, 0.5)):
     """A finished mixture case with a prescribed value in every bin: arrays (window, y bin, x bin)
     us, ws, ps (particle velocity, granular pressure p_s in Pa) and uf, wf, pf (liquid velocity,
     pressure in Pa). One snapshot and one fluid time per window (at its middle; windows of WINDOW
-    s from 0), grid nx x ny bins of dx x dy from the origin (system/extractDict). Each bin holds
-    3 x 3 x 4 particles (d 0.012) wholly inside it and one saturated fluid cell (eps_f 0.45) at
-    its centre, so the extractor's bin values are the prescribed ones exactly: the contact
-    stress C_i = -ps V_bin / 36 per normal component (p_s = ps), the kinetic term dumped with it.
-    Sample height H (the calibration's flowing criterion), channel 1 x 0.5 m. GAS_PRESSURE (Pa):
-    one more row of bins on top, without particles, whose cells hold gas (alpha_l 0) at that
-    pressure, so that the liquid surface is the grains' top edge ny dy inside the grid."""
+    s from START), grid nx x ny bins of dx x dy from the origin (system/extractDict). Each bin holds
+    3 x 3 x 4 particles (d 0.012) wholly inside it and one fluid cell at its centre, so the
+    extractor's bin values are the prescribed ones exactly: the contact stress C_i = -ps V_bin / 36
+    per normal component (p_s = ps), the kinetic term dumped with it. LIQUID (window, y, x): the
+    liquid share alpha_l of each bin's cell (default 1: saturated, eps_f 0.45); a bin with alpha_l
+    < 0.5 holds no particle, its cell (eps_f 1) gas at its pf and its velocity; particle ids are
+    per bin slot, the same in every snapshot. Sample height H (the calibration's flowing
+    criterion), CHANNEL (length, height) m. GAS_PRESSURE (Pa): one more row of bins on top,
+    without particles, whose cells hold gas (alpha_l 0) at that pressure, so that the liquid
+    surface is the grains' top edge ny dy inside the grid."""
     us = np.asarray(us, float)
     nw, ny, nx = us.shape
     rows = ny + (gas_pressure is not None)
+    liquid = np.ones(us.shape) if liquid is None else np.asarray(liquid, float)
     if os.path.exists(case):
         import shutil
         shutil.rmtree(case)
-    end = nw * window
-    scene(case, L=0.3, H=H, W=W, channel=(1.0, 0.5), d=d, end_time=end, write_interval=window,
+    end = start + nw * window
+    scene(case, L=0.3, H=H, W=W, channel=channel, d=d, end_time=end, write_interval=window,
           content="mixture", liquid_density=rho_f, particle_density=rho_s)
     write(os.path.join(case, "system/extractDict"),
           f"grid {{ x (0 {nx * dx:.10g} {nx}); y (0 {rows * dy:.10g} {rows}); }}\n"
-          f"windows {{ start 0; end {end:.10g}; width {window:.10g}; }}\nfluid {{ source openfoam; }}\n")
+          f"windows {{ start {start:.10g}; end {end:.10g}; width {window:.10g}; }}\n"
+          "fluid { source openfoam; }\n")
     off = np.array([1, 3, 5]) / 6.0
     local = np.stack(np.meshgrid(off * dx, off * dy, (np.arange(4) + 0.5) * W / 4, indexing="ij"),
                      -1).reshape(-1, 3)
     jj, ii = np.meshgrid(np.arange(ny), np.arange(nx), indexing="ij")
     corner = np.column_stack([ii.ravel() * dx, jj.ravel() * dy, np.zeros(ii.size)])
-    x = (corner[:, None, :] + local[None, :, :]).reshape(-1, 3)  # bin-major, 36 per bin
+    x_all = (corner[:, None, :] + local[None, :, :]).reshape(-1, 3)  # bin-major, 36 per bin
     per = len(local)
-    n = len(x)
-    r = np.full(n, d / 2)
-    m = rho_s * np.pi / 6 * d**3 * np.ones(n)
     vbin = dx * dy * W
     gj, gi = np.meshgrid(np.arange(rows), np.arange(nx), indexing="ij")
     C = np.column_stack([gi.ravel() * dx + dx / 2, gj.ravel() * dy + dy / 2, np.full(gi.size, W / 2)])
     gas = np.zeros(nx * (rows - ny))  # the gas row's cells, after the grains' rows
     entries = []
     for k in range(nw):
-        t = (k + 0.5) * window
-        vx = np.repeat(us[k].ravel(), per)
-        vy = np.repeat(np.asarray(ws, float)[k].ravel(), per)
-        c = np.repeat(-np.asarray(ps, float)[k].ravel() * vbin / per, per)
+        t = start + (k + 0.5) * window
+        al = liquid[k].ravel()
+        keep = np.repeat(al >= 0.5, per)
+        x = x_all[keep]
+        n = len(x)
+        m = rho_s * np.pi / 6 * d**3 * np.ones(n)
+        vx = np.repeat(us[k].ravel(), per)[keep]
+        vy = np.repeat(np.asarray(ws, float)[k].ravel(), per)[keep]
+        c = np.repeat(-np.asarray(ps, float)[k].ravel() * vbin / per, per)[keep]
         st = np.column_stack([c - m * vx**2, c - m * vy**2, c, -m * vx * vy, np.zeros(n), np.zeros(n)])
         name = f"particles/particles_{k}.vtk"
-        vtk(os.path.join(case, "VTK", name), x, np.column_stack([vx, vy, np.zeros(n)]), m, r, st)
+        vtk(os.path.join(case, "VTK", name), x, np.column_stack([vx, vy, np.zeros(n)]), m,
+            np.full(n, d / 2), st, ids=np.nonzero(keep)[0] + 1)
         entries.append((name, t))
         U = np.column_stack([np.concatenate([np.asarray(uf, float)[k].ravel(), gas]),
                              np.concatenate([np.asarray(wf, float)[k].ravel(), gas]),
                              np.zeros(len(C))])
         p = np.concatenate([np.asarray(pf, float)[k].ravel(), gas + (gas_pressure or 0.0)])
-        alpha = np.concatenate([np.ones(nx * ny), gas])
-        eps = np.concatenate([np.full(nx * ny, 0.45), gas + 1.0])
+        alpha = np.concatenate([al, gas])
+        eps = np.concatenate([np.where(al >= 0.5, 0.45, 1.0), gas + 1.0])
         foam_time(case, "%.10g" % t, C, np.full(len(C), vbin), U, p, alpha, eps)
     series(case, entries)
     finish(case)

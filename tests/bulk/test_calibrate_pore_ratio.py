@@ -5,6 +5,9 @@ chi) p_s, so that the extractor's p_f_excess / (p_s + p_f_excess) is chi in ever
 extractor's p_f_excess and pore_pressure_ratio against the prescribed ones (1e-9 relative: the
 bins are exact), both estimators return chi (1e-9: no noise on the pressures), the target gets
 `pressure porePressureRatio; porePressureRatio chi;`, a target holding lambdaP is refused, and a chi outside [-1, 1) is refused, nothing written.
+The calibrations take the extractor's ratio (--pore-reference surface): the bins' p_s is not the
+weight above them, so the bulk model's reference (mixture) would not give chi here
+(test_round_trip.py checks that one).
 
 usage: test_calibrate_pore_ratio.py MIXFLOWEXTRACT WORKDIR"""
 import os
@@ -56,7 +59,7 @@ def main():
     err = float(np.max(np.abs(chi - CHI)))
     check(err < 1e-9, f"pore_pressure_ratio = {CHI} in every bin: max |diff| {err:.2e} < 1e-9")
 
-    res = cd.calibrate(case, pressure="porePressureRatio")
+    res = cd.calibrate(case, pressure="porePressureRatio", pore_reference="surface")
     r = res["drifts"]["pore_pressure_ratio"]
     for est in cd.ESTIMATORS:
         check(abs(r[est]["value"] - CHI) < 1e-9,
@@ -91,7 +94,7 @@ def main():
     # chi = 1.5 (e = -3 p_s: the grains' load p_s + e negative): outside [-1, 1).
     case3 = os.path.join(work, "dem_case_out_of_range")
     make(case3, exe, 1.5)
-    res3 = cd.calibrate(case3, pressure="porePressureRatio")
+    res3 = cd.calibrate(case3, pressure="porePressureRatio", pore_reference="surface")
     v = res3["drifts"]["pore_pressure_ratio"]["value"]
     bad = os.path.join(work, "bulk_out_of_range")
     os.makedirs(os.path.join(bad, "constant"))

@@ -13,9 +13,9 @@ Steps, each into WORK (default CASE-calibration):
      bulk, dimensions 2, cellSize DX (default CASE's) and controlDict endTime T (default CASE's
      last written time), the bulk tier's recipe (cases/tiers/bulk) applied to this one case;
   3. calibration: the constant drifts of the extraction written into WORK/bulk's bulkProperties
-     (calibrate_drifts.calibrate and write_target; --pressure porePressureRatio and --vertical
-     auto by default: an ill-posed lambda_w is replaced by the isotropic drift, and the table says
-     so);
+     (calibrate_drifts.calibrate and write_target; --pressure porePressureRatio, chi over the
+     bulk model's rho_f p_m at WORK/bulk's solid fraction, and --vertical auto by default: an
+     ill-posed lambda_w is replaced by the isotropic drift, and the table says so);
   4. the bulk run: WORK/bulk/Allrun 1;
   5. the comparison: fronts against time (CFD-DEM granular front_x_m, bulk front_bed_m), the
      surface h(x) at three times (CFD-DEM liquid, bulk mixture: postProcessing/liquid/
@@ -278,8 +278,9 @@ def main(argv=None):
         make_bulk_case(case, bulk, cell, end)
     print("[3/5] calibration of the drifts", flush=True)
     try:
+        alpha, _ = cd.target_solid_fraction(bulk, cd.check_target(bulk))
         res = cd.calibrate(h5, a.estimator, a.flowing_factor, pressure=a.pressure,
-                           vertical=a.vertical)
+                           vertical=a.vertical, solid_fraction=alpha)
     except cd.InputError as e:
         print(f"mixflow calibrate: error: {e}; for a slow flow lower --flowing-factor, or the "
               f"extraction's thresholds.minVelocity / minPressure in {dict_path} (then run again "

@@ -5,7 +5,8 @@ case's constant/bulkProperties `drifts` block with the closure (`pressure lambda
 porePressureRatio;`).
 
 usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median|flux]
-           [--pressure lambdaP|porePressureRatio] [--vertical fit|isotropic|auto]
+           [--pressure lambdaP|porePressureRatio] [--pore-reference mixture|surface]
+           [--vertical fit|isotropic|auto]
            [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
            [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
@@ -16,7 +17,7 @@ extractor's valid_lambda_<q> mask, alpha_s >= --min-solid-fraction, and flowing:
 sqrt(u_s^2 + w_s^2) >= --flowing-factor * sqrt(g H), H the sample height (root attribute
 sample_height_m). Estimators: wls (default), the weighted least-squares slope through the origin
 of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention, for lambda_p; the
-excess pore pressure p_f_excess on the grains' load p_s + p_f_excess for chi); median, the median
+excess pore pressure on the grains' load for chi, see --pore-reference); median, the median
 of the per-bin ratios; flux, the flux-consistent ratio sum w alpha_f u_f / sum w alpha_f u_s
 (the liquid volume flux the drift gives equals the measured one over the selection; for the
 pressure drifts sum w y / sum w x). Uncertainty: the 16-84 % interval of the estimate over a
@@ -27,7 +28,15 @@ alpha_f) u_s] + d/dy[(alpha_s + lambda_w alpha_f) w_s], its RMS over the selecte
 the RMS of its scale |d/dx| + |d/dy| (the data's own residual, alpha_s u_s + alpha_f u_f, beside
 it). A drift is ill-posed when R^2 < 0.5, its 16-84 % interval is wider than its value, or (flux)
 the selected solid flux cancels (|sum w alpha_f x| < 0.1 sum w alpha_f |x|): small vertical
-speeds of both signs do that to lambda_w. --vertical: fit (default) writes lambda_w's own
+speeds of both signs do that to lambda_w. --pore-reference: what chi's excess pore pressure is
+over. mixture (default), the bulk model's own: P_f - rho_f p_m on the grains' buoyant load
+alpha_s (rho_s - rho_f) p_m, with p_m = (p_s + p_f) / rho_m the mixture's kinematic pressure
+(the extractor's total stress p_total over the bulk density rho_m = alpha_s rho_s + alpha_f
+rho_f at the bulk model's alpha_s: the target's, else the source's sample_solid_fraction), in
+every mixture bin; surface, the extractor's pore_pressure_ratio, p_f_excess (over rho_f g (h_l
+- y) from the liquid surface) on p_s + p_f_excess. The two agree at rest; in a flow p_m departs
+from g (h_l - y) and the surface ratio is not the bulk model's chi (docs/calibration.md, "Round
+trip"). --vertical: fit (default) writes lambda_w's own
 estimate; isotropic writes the one drift of both components (u_f = lambda u_s as vectors: the
 components' samples pooled); auto writes the fit when it is well-posed, else the isotropic
 drift, and says so. Prints a table; with --target writes
@@ -78,6 +87,9 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
 # of results/bulk_model were calibrated with.
 PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
 PRESSURE_DEFAULT = "lambdaP"
+# What chi's excess pore pressure is over: the bulk model's rho_f p_m, or the extractor's
+# hydrostatic from the liquid surface (--pore-reference).
+PORE_REFERENCES = ("mixture", "surface")
 # The ratio's range (cfd/mixflowBulkFoam/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
 RATIO_MIN, RATIO_MAX = -1.0, 1.0
 ESTIMATORS = ("wls", "median", "flux")
@@ -139,10 +151,11 @@ def check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator
 
 
 def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
-            pressure=PRESSURE_DEFAULT):
+            pressure=PRESSURE_DEFAULT, pore_reference="mixture", solid_fraction=None):
     """Per drift the selected (window, bin) samples: x (solid), y (fluid), w (weight) and block
     (the spatial bin, for the bootstrap); the selection's description; the windows inside
-    WINDOWS as (index, t0, t1)."""
+    WINDOWS as (index, t0, t1). SOLID_FRACTION: the bulk model's alpha_s, for chi over the
+    mixture reference."""
     f, valid, attrs = d["fields"], d["valid"], d["attrs"]
     for name in ("alpha_s", "u_s", "w_s", "u_f", "w_f", "p_s", "p_f"):
         if name not in f:
@@ -178,7 +191,11 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
         base = win[:, None, None] & (f["alpha_s"] >= min_solid_fraction) & (speed >= speed_min)
     xy = {"lambda_u": (f["u_s"], f["u_f"]), "lambda_w": (f["w_s"], f["w_f"]),
           "lambda_p": (f["p_s"] / rho_s, f["p_f"] / rho_f)}
-    if PRESSURE[pressure] == "pore_pressure_ratio":
+    masks = dict(valid)
+    if PRESSURE[pressure] == "pore_pressure_ratio" and pore_reference == "mixture":
+        xy["pore_pressure_ratio"], masks["pore_pressure_ratio"] = mixture_load(
+            h5, f, rho_s, rho_f, solid_fraction)
+    elif PRESSURE[pressure] == "pore_pressure_ratio":
         if "p_f_excess" not in f:
             raise InputError(f"{h5}: no dataset /fields/p_f_excess (--pressure "
                              "porePressureRatio needs a mixflowExtract file that splits the pore "
@@ -187,14 +204,14 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
     out = {}
     for q in ("lambda_u", "lambda_w", PRESSURE[pressure]):
         key, mask, _, _ = DRIFTS[q]
-        if mask not in valid and q == "lambda_p":
+        if mask not in masks and q == "lambda_p":
             mask = "lambda_p_raw"  # same conditions (mixture, |p_s| >= minPressure)
-        if mask not in valid:
+        if mask not in masks:
             raise InputError(f"{h5}: no dataset /masks/valid_{mask}")
         x, y = xy[q]
-        m = base & valid[mask] & np.isfinite(x) & np.isfinite(y) & (wt > 0)
+        m = base & masks[mask] & np.isfinite(x) & np.isfinite(y) & (wt > 0)
         if not m.any():
-            n_valid = int((valid[mask] & win[:, None, None]).sum())
+            n_valid = int((masks[mask] & win[:, None, None]).sum())
             raise InputError(
                 f"{h5}: no bin to calibrate {q} from: in the {int(win.sum())} selected windows "
                 f"{n_valid} (window, bin) pairs have /masks/valid_{mask}, none of them with "
@@ -215,6 +232,27 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
             "source_sample_solid_fraction": float(attrs.get("sample_solid_fraction", 0.0))}
     info["_base"] = base  # the flowing bins of the selected windows, for the mass balance
     return out, info, selected
+
+
+def mixture_load(h5, f, rho_s, rho_f, alpha):
+    """chi's (load, excess) over the bulk model's reference: with p_m rho_m = p_s + p_f (the
+    total stress) and rho_m = alpha rho_s + (1 - alpha) rho_f, the buoyant load alpha (rho_s -
+    rho_f) p_m = (1 - rho_f / rho_m)(p_s + p_f) and the excess P_f - rho_f p_m; and the bins they
+    hold in (inside the mixture, a nonzero load)."""
+    if alpha is None or not 0 < alpha < 1:
+        raise InputError(f"--pore-reference mixture: the bulk model's solid fraction {alpha} "
+                         "(the target's bulkProperties solidFraction or sceneProperties "
+                         f"sample.solidFraction, else {h5}'s sample_solid_fraction) must be in "
+                         "(0, 1)")
+    gamma = rho_f / (alpha * rho_s + (1 - alpha) * rho_f)
+    total = f["p_s"] + f["p_f"]
+    with h5py.File(h5, "r") as h:
+        reasons = h["masks/reasons"][()] if "masks/reasons" in h else None
+    inside = ((reasons & OUTSIDE_MIXTURE) == 0 if reasons is not None
+              else np.isfinite(f["alpha_s"]))
+    load = (1 - gamma) * total
+    with np.errstate(invalid="ignore"):
+        return (load, f["p_f"] - gamma * total), inside & np.isfinite(load) & (load != 0)
 
 
 def flux_ratio(x, y, a):
@@ -276,7 +314,8 @@ def bootstrap(s, estimator, n_boot, seed):
 
 def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0.1,
               windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1,
-              pressure=PRESSURE_DEFAULT, vertical="fit"):
+              pressure=PRESSURE_DEFAULT, vertical="fit", pore_reference="mixture",
+              solid_fraction=None):
     """The drifts of SOURCE (case directory or .h5): a dict with per drift the chosen estimate
     ("value"), every estimator, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
     counts, the velocity drifts' fit quality and well-posedness, lambda_w's rule ("vertical"),
@@ -287,13 +326,19 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
         raise InputError(f"--vertical {vertical}: allowed {', '.join(VERTICAL)}")
     if pressure not in PRESSURE:
         raise InputError(f"--pressure {pressure}: allowed {', '.join(PRESSURE)}")
+    if pore_reference not in PORE_REFERENCES:
+        raise InputError(f"--pore-reference {pore_reference}: allowed "
+                         f"{', '.join(PORE_REFERENCES)}")
     h5 = find_h5(source)
     try:
         d = load(h5)
     except (OSError, KeyError) as e:
         raise InputError(f"{h5}: not a mixflowExtract HDF5 file ({e})") from None
+    ratio = PRESSURE[pressure] == "pore_pressure_ratio"
+    if ratio and pore_reference == "mixture" and solid_fraction is None:
+        solid_fraction = float(d["attrs"].get("sample_solid_fraction", 0.0))
     sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
-                                  pressure)
+                                  pressure, pore_reference, solid_fraction)
     base = info.pop("_base")
     res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator, "pressure": pressure,
            "selection": dict(info, flowing_factor=flowing_factor,
@@ -302,6 +347,10 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
                                              else windows[1]],
                              bootstrap=n_boot, seed=seed),
            "drifts": {}}
+    if ratio:
+        res["pore_reference"] = pore_reference
+        if pore_reference == "mixture":
+            res["pore_solid_fraction"] = solid_fraction
     for q, s in sel.items():
         r = {"samples": int(s["x"].size), "spatial_bins": int(np.unique(s["block"]).size),
              "ratio_quantiles": quantiles(s["y"] / s["x"])}
@@ -440,6 +489,12 @@ def table(res):
     lines.append(f"mass balance (P-Eq. 9) with these drifts: RMS residual / RMS scale "
                  f"{g(mb['residual_over_scale']).strip()} over {mb['bins']} bins (the data's own "
                  f"alpha_s u_s + alpha_f u_f: {g(mb['data_residual_over_scale']).strip()})")
+    if res.get("pore_reference") == "mixture":
+        lines.append(f"pore_pressure_ratio over the bulk model's rho_f p_m, p_m = (p_s + p_f) / "
+                     f"rho_m at alpha_s {res['pore_solid_fraction']:g} (--pore-reference mixture)")
+    elif res.get("pore_reference") == "surface":
+        lines.append("pore_pressure_ratio over the hydrostatic from the liquid surface "
+                     "(--pore-reference surface: the extractor's pore_pressure_ratio)")
     s = res["selection"]
     lines.append(f"estimator {res['estimator']} (16-84 % bootstrap over spatial bins, "
                  f"{s['bootstrap']} draws); flowing: solid speed >= {s['flowing_speed_m_s']:.4g} "
@@ -454,9 +509,9 @@ def _num(v):
     return f"{v:.6g}"
 
 
-def _solid_fraction(target, tree, res):
-    """alpha_s the bulk model uses (prepare/BulkModel.cpp): bulkProperties solidFraction, else
-    the target's sceneProperties sample.solidFraction, else the source's."""
+def target_solid_fraction(target, tree):
+    """alpha_s the bulk model of TARGET uses (prepare/BulkModel.cpp): bulkProperties
+    solidFraction, else its sceneProperties sample.solidFraction; (None, None) without either."""
     if "solidFraction" in tree:
         return float(tree["solidFraction"]), "constant/bulkProperties solidFraction"
     scene = os.path.join(target, "constant", "sceneProperties")
@@ -465,9 +520,17 @@ def _solid_fraction(target, tree, res):
             with open(scene) as f:
                 sf = parse_dict(f.read()).get("sample", {}).get("solidFraction")
             if sf is not None:
-                return float(sf), f"{scene} sample.solidFraction"
+                return float(sf.split()[0]), f"{scene} sample.solidFraction"
         except (DictError, ValueError):
             pass
+    return None, None
+
+
+def _solid_fraction(target, tree, res):
+    """target_solid_fraction, else the source's sample_solid_fraction."""
+    alpha, where = target_solid_fraction(target, tree)
+    if alpha is not None:
+        return alpha, where
     return res["selection"]["source_sample_solid_fraction"], "the source's sample_solid_fraction"
 
 
@@ -657,6 +720,11 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
         raise InputError(f"{path}: solidFraction: {e}") from None
     lo = (DRIFT_DENOMINATOR_MIN - alpha) / (1 - alpha) if alpha < 1 else -DRIFT_MAX
     drifts = {q: r["value"] for q, r in res["drifts"].items()}
+    if res.get("pore_reference") == "mixture" and abs(res["pore_solid_fraction"] - alpha) > 1e-9:
+        raise InputError(f"{path}: chi was calibrated over the mixture reference at alpha_s "
+                         f"{res['pore_solid_fraction']:g}, the target's is {alpha:g} (from "
+                         f"{alpha_from}): calibrate with the target's solid fraction; nothing "
+                         "written")
     pressure = res.get("pressure", PRESSURE_DEFAULT)
     other = next(k for k in PRESSURE if k != pressure)
     if other in tree.get("drifts", {}):
@@ -727,6 +795,10 @@ def main(argv=None):
                     help="the pore-pressure closure calibrated and written (bulkProperties "
                     "drifts.pressure): lambdaP (default, the closure of the committed stages) or "
                     "porePressureRatio (chi, without the pole of Lambda_p; docs/bulk_model.md)")
+    ap.add_argument("--pore-reference", default="mixture",
+                    help="--pressure porePressureRatio: chi's excess over the bulk model's rho_f "
+                    "p_m (mixture, default) or over the extractor's hydrostatic from the liquid "
+                    "surface (surface: its pore_pressure_ratio)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="flowing bins: solid speed >= FACTOR sqrt(g H) (default 0.05)")
     ap.add_argument("--min-solid-fraction", type=float, default=0.1)
@@ -763,11 +835,12 @@ def main(argv=None):
             raise InputError("--window-span: applies to --per-window only")
         if a.field_mean not in FIELD_MEAN_TEXT:
             raise InputError(f"--field-mean {a.field_mean}: allowed {', '.join(sorted(FIELD_MEAN_TEXT))}")
-        if a.target:
-            check_target(a.target)  # before the extraction is read: a bad target fails at once
+        alpha = None
+        if a.target:  # before the extraction is read: a bad target fails at once
+            alpha, _ = target_solid_fraction(a.target, check_target(a.target))
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed, a.pressure,
-                        a.vertical)
+                        a.vertical, a.pore_reference, alpha)
         print(table(res))
         if a.target:
             for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,
