@@ -251,7 +251,7 @@ std::string driftFieldsSummary(const BulkModel& b) {
 }
 
 // The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
-// (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
+// (cfd/bulkMixture/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
 std::string bulkMixtureCoeffs(const LiquidCase& c) {
   const BulkModel& b = c.bulk;
   const Rheology& r = c.liquid;

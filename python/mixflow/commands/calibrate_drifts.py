@@ -66,12 +66,12 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
 # of results/bulk_model were calibrated with.
 PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
 PRESSURE_DEFAULT = "lambdaP"
-# The ratio's range (cfd/mixflowBulkFoam/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
+# The ratio's range (common/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
 RATIO_MIN, RATIO_MAX = -1.0, 1.0
 ESTIMATORS = ("wls", "median")
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 # prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
-# cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
+# common/DriftAlgebra.h), |lambda| <= 1e3.
 DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
 
 
