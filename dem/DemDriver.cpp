@@ -98,13 +98,7 @@ SettleReport DemDriver::settle() {
            << fmt(friction, 4) << " gave " << fmt(r.sampleFraction, 4) << " (target "
            << s.sample.solidFraction << " ± " << ss.packingTolerance << ")" << std::endl;
     if (search.landed()) break;
-    if (ss.checkpointInterval > 0 && rank_ == 0) {
-      SettleCheckpoint between;
-      between.restartFile = SettleCheckpoint::kNone;
-      between.fingerprint = fingerprint;
-      between.trials = search.trials();
-      between.write(s.caseDir);
-    }
+    if (ss.checkpointInterval > 0 && rank_ == 0) writeBetweenTrials(fingerprint, search.trials());
   }
   MPI_Barrier(comm_);
   if (rank_ == 0) SettleCheckpoint::remove(s.caseDir);  // the settled sample supersedes it
@@ -112,17 +106,30 @@ SettleReport DemDriver::settle() {
   r.settleFriction = friction;
   r.settles = control ? static_cast<long>(search.trials().size()) : 1;
   r.packingTolerance = control ? ss.packingTolerance : 0.0;
-  // Without the control the target fraction only sets the grain count.
-  const double off = r.sampleFraction / s.sample.solidFraction - 1.0;
-  if (!control && rank_ == 0 && std::abs(off) > kSettledFractionTolerance)
-    out_ << "[dem] warning: the settled sample solid fraction " << fmt(r.sampleFraction, 4)
-         << " is " << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
+  if (!control && rank_ == 0) warnOffTarget(r.sampleFraction);
+  return r;
+}
+
+void DemDriver::writeBetweenTrials(const std::string& fingerprint,
+                                   const std::vector<PackingSearch::Trial>& trials) const {
+  SettleCheckpoint between;
+  between.restartFile = SettleCheckpoint::kNone;
+  between.fingerprint = fingerprint;
+  between.trials = trials;
+  between.write(scene_.caseDir);
+}
+
+void DemDriver::warnOffTarget(double sampleFraction) const {
+  const Scene& s = scene_;
+  const double off = sampleFraction / s.sample.solidFraction - 1.0;
+  if (std::abs(off) > kSettledFractionTolerance)
+    out_ << "[dem] warning: the settled sample solid fraction " << fmt(sampleFraction, 4) << " is "
+         << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
          << " sample.solidFraction " << s.sample.solidFraction
          << " (constant/sceneProperties): with demDict settle.packingControl off the target sets "
             "the grain count only; settle.friction sets the packing (looser with more friction), "
             "softened contacts (youngModulusFactor) compact it"
          << std::endl;
-  return r;
 }
 
 std::string DemDriver::packingMiss(const PackingSearch& search, const std::string& why) const {

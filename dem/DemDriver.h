@@ -74,6 +74,13 @@ class DemDriver {
   double stiffenSettled();
   // The real friction and rolling resistance, then a short relaxation; returns its time.
   double relaxAtRealFriction();
+  // Between two settles of the packing control: a checkpoint without a restart, with the
+  // finished settles (SettleCheckpoint.h), so that an interrupted search goes on from them.
+  void writeBetweenTrials(const std::string& fingerprint,
+                          const std::vector<PackingSearch::Trial>& trials) const;
+  // Without the packing control the target fraction only sets the grain count: a warning when
+  // the settled sample is off it by more than kSettledFractionTolerance.
+  void warnOffTarget(double sampleFraction) const;
   // The message of a packing control that found no friction within tolerance.
   std::string packingMiss(const PackingSearch& search, const std::string& why) const;
   // The settle's checkpoint at t (SettleCheckpoint.h), with the control's finished trials.
