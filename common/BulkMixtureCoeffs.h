@@ -1,5 +1,5 @@
 // bulkMixtureCoeffs: the mixture phase's sub-dictionary of constant/transportProperties for
-// mixflowBulkFoam's bulkMixture viscosity model (cfd/mixflowBulkFoam/bulkMixtureViscosity.H),
+// mixflowBulkFoam's bulkMixture viscosity model (cfd/bulkMixture/bulkMixtureViscosity.H),
 // written by mixflowPrepare from constant/bulkProperties in kinematic units. Declared once here:
 // the writer (prepare/FoamCaseWriter.cpp) writes these entries, the solver refuses any other and
 // any value outside its range before the first step, and docs/parameters.md shows the table.

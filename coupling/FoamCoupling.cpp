@@ -110,15 +110,27 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
       turbulence_(turbulence),
       g_(g),
       resume_(resume) {
-  const Foam::Time& runTime = mesh.time();
-  const std::string caseDir = runTime.globalPath();
-  const std::string propsFile = caseDir + "/constant/couplingProperties";
+  readModels(viscousStress, solverVoidfractionMin);
+  // The coupling's fields are part of the state: write them with the others.
+  Ksl_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+  Us_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+  fSource_.writeOpt() = Foam::IOobject::AUTO_WRITE;
+  startDemHalf();
+  makeExchangeStages();
+  reportSettings();
+  startLogAndBalance();
+}
 
+// couplingProperties, its force and void-fraction models, what they need from the fluid, and the
+// eps_f floor (the solver's, or couplingProperties' larger one).
+void FoamCoupling::readModels(const Foam::word& viscousStress, Foam::scalar solverVoidfractionMin) {
+  const std::string propsFile =
+      std::string(mesh_.time().globalPath()) + "/constant/couplingProperties";
   ForceContext context;
-  context.g = toVec(g.value());
+  context.g = toVec(g_.value());
   context.formulation = "B";  // mixflowFoam's only formulation (it refuses any other)
   context.viscousStress = viscousStress;
-  context.liquid = liquidLaw(mixture);
+  context.liquid = liquidLaw(mixture_);
   try {
     props_ = std::make_unique<CouplingProperties>(CouplingProperties::read(propsFile));
     for (const auto& name : props_->forceModels)
@@ -139,12 +151,12 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
             std::to_string(solverVoidfractionMin) + ", which the solver enforces");
     voidfractionMin_ = *props_->voidfractionMin;
   }
+}
 
-  // The coupling's fields are part of the state: write them with the others.
-  Ksl_.writeOpt() = Foam::IOobject::AUTO_WRITE;
-  Us_.writeOpt() = Foam::IOobject::AUTO_WRITE;
-  fSource_.writeOpt() = Foam::IOobject::AUTO_WRITE;
-
+// LIGGGHTS with the scene (DemStartup.H), the drag scheme, the implicit drag's defect field
+// (implicitDragDefect returned) and, when the drag follows the slip at every DEM step, the drag
+// laws' beta for the per-step callback.
+void FoamCoupling::startDemHalf() {
   DemStart dem = startDem(mesh_, *props_, DragScheme::integrationOf(*props_), g_, resume_);
   dem_ = std::move(dem.session);
   link_ = std::move(dem.link);
@@ -153,8 +165,8 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
   if (drag_->integration() == DemLink::DragIntegration::implicit &&
       props_->implicitDragDefect == "returned")
     dragDefect_ = std::make_unique<Foam::volVectorField>(
-        Foam::IOobject("dragDefect", runTime.timeName(), mesh_, Foam::IOobject::READ_IF_PRESENT,
-                       Foam::IOobject::AUTO_WRITE),
+        Foam::IOobject("dragDefect", mesh_.time().timeName(), mesh_,
+                       Foam::IOobject::READ_IF_PRESENT, Foam::IOobject::AUTO_WRITE),
         mesh_, Foam::dimensionedVector(fSource_.dimensions(), Foam::Zero));
   if (drag_->followsSlip()) {
     // Only the drag laws give beta; the per-step callback skips the explicit forces' models.
@@ -167,7 +179,12 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
       return beta;
     });
   }
+}
 
+// What an exchange's stages keep: the cell locator (with the particle box's periodic z, which
+// must be the mesh's), the particle storage, the router to the ranks' (sub)mesh boxes and the
+// per-cell source assembly.
+void FoamCoupling::makeExchangeStages() {
   auto locator = std::make_unique<FoamCellLocator>(mesh_);
   double zLo = 0, zHi = 0;
   if (link_->periodicZ(zLo, zHi)) {
@@ -198,10 +215,14 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
                                              : SourceAssembly::Distribution::volume,
       props_->dragReactionVelocity == "cell" ? SourceAssembly::ReactionVelocity::cell
                                              : SourceAssembly::ReactionVelocity::particleMean);
+}
 
+// The settings in the log, one line per model.
+void FoamCoupling::reportSettings() const {
   Foam::Info << "Coupling (constant/couplingProperties): exchange every " << props_->exchangeEvery
-             << " DEM steps (DEM dt " << link_->timeStep() << " s, CFD dt " << runTime.deltaTValue()
-             << " s), drag integration " << props_->dragIntegration.c_str() << ", interpolation "
+             << " DEM steps (DEM dt " << link_->timeStep() << " s, CFD dt "
+             << mesh_.time().deltaTValue() << " s), drag integration "
+             << props_->dragIntegration.c_str() << ", interpolation "
              << props_->interpolation.c_str() << ", reaction distribution "
              << props_->sourceDistribution.c_str() << " (drag reaction at the "
              << props_->dragReactionVelocity.c_str() << " velocity), voidfractionMin "
@@ -210,7 +231,11 @@ FoamCoupling::FoamCoupling(const Foam::fvMesh& mesh, Foam::volScalarField& voidf
              << Foam::nl;
   for (const auto& m : forceModels_) Foam::Info << "  force: " << m->describe().c_str() << Foam::nl;
   Foam::Info << Foam::endl;
+}
 
+// The exchange log (postProcessing/coupling) and the DEM slabs' re-balancing (demDict).
+void FoamCoupling::startLogAndBalance() {
+  const Foam::Time& runTime = mesh_.time();
   std::vector<std::string> modelNames;
   for (const auto& m : forceModels_) modelNames.push_back(m->name());
   log_ = std::make_unique<ExchangeLog>(runTime, props_->exchangeEvery, props_->logEvery, modelNames,

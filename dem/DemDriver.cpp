@@ -98,13 +98,7 @@ SettleReport DemDriver::settle() {
            << fmt(friction, 4) << " gave " << fmt(r.sampleFraction, 4) << " (target "
            << s.sample.solidFraction << " ± " << ss.packingTolerance << ")" << std::endl;
     if (search.landed()) break;
-    if (ss.checkpointInterval > 0 && rank_ == 0) {
-      SettleCheckpoint between;
-      between.restartFile = SettleCheckpoint::kNone;
-      between.fingerprint = fingerprint;
-      between.trials = search.trials();
-      between.write(s.caseDir);
-    }
+    if (ss.checkpointInterval > 0 && rank_ == 0) writeBetweenTrials(fingerprint, search.trials());
   }
   MPI_Barrier(comm_);
   if (rank_ == 0) SettleCheckpoint::remove(s.caseDir);  // the settled sample supersedes it
@@ -112,17 +106,30 @@ SettleReport DemDriver::settle() {
   r.settleFriction = friction;
   r.settles = control ? static_cast<long>(search.trials().size()) : 1;
   r.packingTolerance = control ? ss.packingTolerance : 0.0;
-  // Without the control the target fraction only sets the grain count.
-  const double off = r.sampleFraction / s.sample.solidFraction - 1.0;
-  if (!control && rank_ == 0 && std::abs(off) > kSettledFractionTolerance)
-    out_ << "[dem] warning: the settled sample solid fraction " << fmt(r.sampleFraction, 4)
-         << " is " << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
+  if (!control && rank_ == 0) warnOffTarget(r.sampleFraction);
+  return r;
+}
+
+void DemDriver::writeBetweenTrials(const std::string& fingerprint,
+                                   const std::vector<PackingSearch::Trial>& trials) const {
+  SettleCheckpoint between;
+  between.restartFile = SettleCheckpoint::kNone;
+  between.fingerprint = fingerprint;
+  between.trials = trials;
+  between.write(scene_.caseDir);
+}
+
+void DemDriver::warnOffTarget(double sampleFraction) const {
+  const Scene& s = scene_;
+  const double off = sampleFraction / s.sample.solidFraction - 1.0;
+  if (std::abs(off) > kSettledFractionTolerance)
+    out_ << "[dem] warning: the settled sample solid fraction " << fmt(sampleFraction, 4) << " is "
+         << fmt(100 * std::abs(off), 2) << " % " << (off < 0 ? "below" : "above")
          << " sample.solidFraction " << s.sample.solidFraction
          << " (constant/sceneProperties): with demDict settle.packingControl off the target sets "
             "the grain count only; settle.friction sets the packing (looser with more friction), "
             "softened contacts (youngModulusFactor) compact it"
          << std::endl;
-  return r;
 }
 
 std::string DemDriver::packingMiss(const PackingSearch& search, const std::string& why) const {
@@ -160,49 +167,67 @@ SettleReport DemDriver::settleTrial(double friction, const std::optional<SettleC
   const Scene& s = scene_;
   // The scene the grains settle in: s, or s softened to settle.stiffenFrom with its own step.
   const Scene st = s.settlingScene();
-  const double dtSettle = st.timeStepUsed();
   double t = 0;
-  double top = 0;
-  if (from) {
-    // The box, atoms and gate as the checkpoint left them; the settling materials below.
-    lig_->commands(resumeSetupCommands(st, (fs::path(s.caseDir) / from->restartFile).string(),
-                                       dtSettle, true));
-    t = from->time;
-    settleSlot_ = from->restartFile == SettleCheckpoint::slotFile(0) ? 1 : 0;
-    top = s.sample.height;  // only sets the free-fall time, which has passed
-    if (rank_ == 0)
-      out_ << "[dem] settling continues from its checkpoint at t = " << fmt(t, 6) << " s ("
-           << SettleCheckpoint::statePath(s.caseDir) << ")" << std::endl;
-  } else {
-    const Fill fill = makeLooseFill(s);
-    top = fill.top;
-    const Box box = channelBox(s, fill.top);
-    const std::string dataFile = (fs::path(s.caseDir) / "dem" / "initial.data").string();
-    if (rank_ == 0) writeDataFile(dataFile, fill, s.particles, box);
-    MPI_Barrier(comm_);
-    if (rank_ == 0)
-      out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
-           << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
-           << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
-           << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
-    if (rank_ == 0 && s.stiffensSettled())
-      out_ << "[dem] settling at E = " << st.youngModulusUsed() << " Pa (settle.stiffenFrom "
-           << s.settle.stiffenFrom << "), dt = " << dtSettle << " s, then stiffened" << std::endl;
-    lig_->commands(sceneSetupCommands(st, dataFile, dtSettle));
-  }
+  const double top = placeSettlingGrains(st, from, t);
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
   // off while settling: a constant rolling torque chatters at rest and keeps the sample from
   // settling.
   lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, friction, 0.0));
   lig_->commands(settleGravityCommands(s));
+  const bool converged = settleUnderGravity(st.timeStepUsed(), top, t, fingerprint, trials);
+  if (s.stiffensSettled()) t += stiffenSettled();
+  t += relaxAtRealFriction();
+  SettleReport r = measureSample(t, converged);
+  if (rank_ == 0)
+    out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
+         << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
+         << "), sample solid fraction " << fmt(r.sampleFraction, 4) << " (target "
+         << s.sample.solidFraction << "), bulk fraction " << fmt(r.bulkFraction, 4) << std::endl;
+  return r;
+}
 
+double DemDriver::placeSettlingGrains(const Scene& st, const std::optional<SettleCheckpoint>& from,
+                                      double& t) {
+  const Scene& s = scene_;
+  const double dtSettle = st.timeStepUsed();
+  if (from) {
+    // The box, atoms and gate as the checkpoint left them; the settling materials follow.
+    lig_->commands(resumeSetupCommands(st, (fs::path(s.caseDir) / from->restartFile).string(),
+                                       dtSettle, true));
+    t = from->time;
+    settleSlot_ = from->restartFile == SettleCheckpoint::slotFile(0) ? 1 : 0;
+    if (rank_ == 0)
+      out_ << "[dem] settling continues from its checkpoint at t = " << fmt(t, 6) << " s ("
+           << SettleCheckpoint::statePath(s.caseDir) << ")" << std::endl;
+    return s.sample.height;  // only sets the free-fall time, which has passed
+  }
+  const Fill fill = makeLooseFill(s);
+  const Box box = channelBox(s, fill.top);
+  const std::string dataFile = (fs::path(s.caseDir) / "dem" / "initial.data").string();
+  if (rank_ == 0) writeDataFile(dataFile, fill, s.particles, box);
+  MPI_Barrier(comm_);
+  if (rank_ == 0)
+    out_ << "[dem] " << fill.centres.size() << " particles (d = " << s.particles.diameter
+         << " m), E = " << s.youngModulusUsed() << " Pa (factor " << s.dem.youngModulusFactor
+         << "), dt = " << dt_ << " s = " << fmt(dt_ / s.rayleighTime(), 3) << " T_R (limit "
+         << fmt(s.stableTimeStepLimit(), 4) << " s)" << std::endl;
+  if (rank_ == 0 && s.stiffensSettled())
+    out_ << "[dem] settling at E = " << st.youngModulusUsed() << " Pa (settle.stiffenFrom "
+         << s.settle.stiffenFrom << "), dt = " << dtSettle << " s, then stiffened" << std::endl;
+  lig_->commands(sceneSetupCommands(st, dataFile, dtSettle));
+  return fill.top;
+}
+
+bool DemDriver::settleUnderGravity(double dtSettle, double top, double& t,
+                                   const std::string& fingerprint,
+                                   const std::vector<PackingSearch::Trial>& trials) {
+  const Scene& s = scene_;
   const double m = s.particles.mass(), d = s.particles.diameter;
   const long nChunk = std::max(1L, std::lround(kSettleCheckInterval / dtSettle));
   const double tFall = std::sqrt(2.0 * top / kG);
   const double every = s.settle.checkpointInterval;
   double nextCheckpoint = every > 0 ? (std::floor(t / every + 1e-9) + 1) * every : 0;
   Progress progress("settle", t, s.settle.maxTime, out_);
-  bool converged = false;
   // The sample stays behind the gate while it settles: one balance at the start holds.
   if (s.dem.balanceInterval > 0 &&
       !balanceSlabs(*lig_, comm_, balanceWeight(s.dem.balanceWeight)) && rank_ == 0 && size_ > 1)
@@ -218,51 +243,48 @@ SettleReport DemDriver::settleTrial(double friction, const std::optional<SettleC
                                " s: time step too large for the contact stiffness?");
     const double keRatio = meanKineticPerParticle(e) / (m * kG * d);
     if (rank_ == 0) progress.update(t, false, ", KE/(N m g d) = " + fmt(keRatio, 3));
-    if (t > tFall && keRatio < s.settle.kineticTolerance) {
-      converged = true;
-      break;
-    }
+    if (t > tFall && keRatio < s.settle.kineticTolerance) return true;
     if (every > 0 && t >= nextCheckpoint - 0.5 * dtSettle) {
       writeSettleCheckpoint(t, fingerprint, trials);
       nextCheckpoint += every;
     }
   }
-  if (s.stiffensSettled()) {
-    // Up to the scene's moduli and step in geometric steps at the settling friction: each sheds
-    // part of the soft overlaps (SettleSpec::stiffenSteps).
-    double tStiff = 0;
-    Energies e;
-    for (long k = 1; k <= s.settle.stiffenSteps; ++k) {
-      const Scene step = s.stiffeningScene(k);
-      const double dtStep = step.timeStepUsed();  // the last step is the scene's: dt_
-      lig_->commands(stiffenCommands(step, dtStep));
-      lig_->invalidateSetup();
-      const long n = std::max(1L, std::lround(s.settle.stiffenStepTime / dtStep));
-      lig_->run(n);
-      tStiff += n * dtStep;
-      e = energies(lig_->particles(), kG, comm_);
-    }
-    t += tStiff;
-    if (rank_ == 0)
-      out_ << "[dem] stiffened to E = " << s.youngModulusUsed() << " Pa in "
-           << s.settle.stiffenSteps << " steps, " << fmt(tStiff, 4)
-           << " s: KE/(N m g d) = " << fmt(meanKineticPerParticle(e) / (m * kG * d), 3)
-           << std::endl;
+  return false;
+}
+
+double DemDriver::stiffenSettled() {
+  const Scene& s = scene_;
+  // Up to the scene's moduli and step in geometric steps at the settling friction: each sheds
+  // part of the soft overlaps (SettleSpec::stiffenSteps).
+  double tStiff = 0;
+  Energies e;
+  for (long k = 1; k <= s.settle.stiffenSteps; ++k) {
+    const Scene step = s.stiffeningScene(k);
+    const double dtStep = step.timeStepUsed();  // the last step is the scene's: dt_
+    lig_->commands(stiffenCommands(step, dtStep));
+    lig_->invalidateSetup();
+    const long n = std::max(1L, std::lround(s.settle.stiffenStepTime / dtStep));
+    lig_->run(n);
+    tStiff += n * dtStep;
+    e = energies(lig_->particles(), kG, comm_);
   }
+  if (rank_ == 0)
+    out_ << "[dem] stiffened to E = " << s.youngModulusUsed() << " Pa in " << s.settle.stiffenSteps
+         << " steps, " << fmt(tStiff, 4) << " s: KE/(N m g d) = "
+         << fmt(meanKineticPerParticle(e) / (s.particles.mass() * kG * s.particles.diameter), 3)
+         << std::endl;
+  return tStiff;
+}
+
+double DemDriver::relaxAtRealFriction() {
+  const Scene& s = scene_;
   // Back to the real friction, and a short relaxation so the contacts carry it.
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
                                   s.particles.rollingFriction));
   lig_->invalidateSetup();
   const long nRelax = std::lround(s.settle.relaxTime / dt_);
   lig_->run(nRelax);
-  t += nRelax * dt_;
-  SettleReport r = measureSample(t, converged);
-  if (rank_ == 0)
-    out_ << "[dem] settled in " << fmt(t, 4) << " s" << (converged ? "" : " (NOT converged)")
-         << ": height " << fmt(r.settledHeight, 4) << " m (target " << s.sample.height
-         << "), sample solid fraction " << fmt(r.sampleFraction, 4) << " (target "
-         << s.sample.solidFraction << "), bulk fraction " << fmt(r.bulkFraction, 4) << std::endl;
-  return r;
+  return nRelax * dt_;
 }
 
 void DemDriver::writeSettleCheckpoint(double t, const std::string& fingerprint,

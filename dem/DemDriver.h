@@ -62,6 +62,25 @@ class DemDriver {
   SettleReport settleTrial(double friction, const std::optional<SettleCheckpoint>& from,
                            const std::string& fingerprint,
                            const std::vector<PackingSearch::Trial>& trials);
+  // settleTrial's steps. The grains in LIGGGHTS: a fresh loose fill, or the checkpoint's state
+  // (t set to its time); returns the fill's top, which sets the free-fall time.
+  double placeSettlingGrains(const Scene& st, const std::optional<SettleCheckpoint>& from,
+                             double& t);
+  // Runs until the grains are at rest (KE/(N m g d) below settle.kineticTolerance after the free
+  // fall) or t reaches settle.maxTime, writing checkpoints; returns whether they came to rest.
+  bool settleUnderGravity(double dtSettle, double top, double& t, const std::string& fingerprint,
+                          const std::vector<PackingSearch::Trial>& trials);
+  // Softened settle (settle.stiffenFrom): up to the scene's moduli; returns the time it took.
+  double stiffenSettled();
+  // The real friction and rolling resistance, then a short relaxation; returns its time.
+  double relaxAtRealFriction();
+  // Between two settles of the packing control: a checkpoint without a restart, with the
+  // finished settles (SettleCheckpoint.h), so that an interrupted search goes on from them.
+  void writeBetweenTrials(const std::string& fingerprint,
+                          const std::vector<PackingSearch::Trial>& trials) const;
+  // Without the packing control the target fraction only sets the grain count: a warning when
+  // the settled sample is off it by more than kSettledFractionTolerance.
+  void warnOffTarget(double sampleFraction) const;
   // The message of a packing control that found no friction within tolerance.
   std::string packingMiss(const PackingSearch& search, const std::string& why) const;
   // The settle's checkpoint at t (SettleCheckpoint.h), with the control's finished trials.

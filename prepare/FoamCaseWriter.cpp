@@ -195,7 +195,7 @@ std::string fvSchemes(const LiquidCase& c) {
          "    div(phi,alpha)  Gauss vanLeer;\n"
          "    div(phirb,alpha) Gauss linear;\n"
          "    div(((rho*nuEff)*dev2(T(grad(U))))) Gauss linear;\n" +
-         // The bulk model's drift stress (mixflowBulkFoam bulkDriftStress.H).
+         // The bulk model's drift stress (apps/mixflowBulkFoam/bulkDriftStress.H).
          std::string(c.bulkModel() ? "    div(tauD) Gauss linear;\n" : "") +
          "}\n"
          "laplacianSchemes { default Gauss linear corrected; }\n"
@@ -251,7 +251,7 @@ std::string driftFieldsSummary(const BulkModel& b) {
 }
 
 // The mixture phase of the bulk model: the bulkMixture viscosity model's kinematic coefficients
-// (cfd/mixflowBulkFoam/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
+// (cfd/bulkMixture/bulkMixtureViscosity.H) from constant/bulkProperties and the liquid.
 std::string bulkMixtureCoeffs(const LiquidCase& c) {
   const BulkModel& b = c.bulk;
   const Rheology& r = c.liquid;

@@ -277,7 +277,7 @@ def read_reference(path, key_col, key):
 
 def powerlaw_sphere_factor(reference_dir, n):
     """X(n) of tests/reference/powerlaw_sphere_drag_correction.csv, linear in n; 1 for n >= 1
-    (coupling/DragViscosity.h powerLawSphereFactor)."""
+    (coupling/models/dragViscosity/DragViscosity.h powerLawSphereFactor)."""
     if n >= 1:
         return 1.0
     path = os.path.join(reference_dir, "powerlaw_sphere_drag_correction.csv")
@@ -292,7 +292,7 @@ def powerlaw_sphere_factor(reference_dir, n):
 
 def powerlaw_shape_factor(reference_dir, n, eps, shear_rate_factor=1.0):
     """The slip closure's power-law shape factor X(n)^(1-w) ((3n + 1) / 4n)^(n w), w = pore /
-    (pore + factor), pore = 12 (1 - eps) / eps (coupling/DragViscosity.h powerLawShapeFactor)."""
+    (pore + factor), pore = 12 (1 - eps) / eps (coupling/models/dragViscosity/DragViscosity.h powerLawShapeFactor)."""
     if n >= 1:
         return 1.0
     pore = 12 * (1 - eps) / eps

@@ -7,7 +7,7 @@ calibrate-drifts --fields --pressure porePressureRatio`, and run again (run B, c
 bulk model's reference, --pore-reference mixture; run C, over the extractor's liquid surface,
 --pore-reference surface).
 
-What the synthetic data carry comes from the fields run A writes (cfd/mixflowBulkFoam
+What the synthetic data carry comes from the fields run A writes (apps/mixflowBulkFoam/
 writeBulkFields.H), each as the CFD-DEM quantity the extractor reads:
   particles: velocity U.solid; contact stress per bulk volume sigma' = alpha_s (P_s - P_f) (the
              closure's P_s = P_f + sigma' / alpha_s), dumped as the LIGGGHTS per-particle virial;

@@ -1,4 +1,4 @@
-// Unit tests of the bulk model's algebra (cfd/mixflowBulkFoam/DriftAlgebra.h) against exact
+// Unit tests of the bulk model's algebra (common/DriftAlgebra.h) against exact
 // identities of the quasi two-phase model (docs/bulk_model.md) and the paper's own numbers.
 #include <gtest/gtest.h>
 

@@ -63,7 +63,7 @@ LIQUIDS = {  # rho [kg/m3], tau_y [Pa], K [Pa s^n], n, velocities [m/s]
 
 
 def law_viscosity(rate, tau, k, n, cap, shape=1.0):
-    """The liquid's apparent viscosity (coupling/DragViscosity.h LiquidLaw::viscosity)."""
+    """The liquid's apparent viscosity (coupling/models/dragViscosity/DragViscosity.h LiquidLaw::viscosity)."""
     return min(cap, (tau + shape * k * rate ** n) / rate)
 
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A lone grain of the paper (d 24 mm, rho_p 2500 kg/m3) released at rest in a closed box of a
-yield-stress liquid, with each drag-viscosity closure (coupling/DragViscosity.h): is it held or
+yield-stress liquid, with each drag-viscosity closure (coupling/models/dragViscosity/DragViscosity.h): is it held or
 does it settle, and how fast, against the published single-sphere results.
 
 Case: the settling test's (run_settling.py): box 8 x 24 x 8 cells of 5 d, liquid everywhere,

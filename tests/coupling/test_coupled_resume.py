@@ -11,7 +11,7 @@ mpirun and its ranks) as soon as dem/coupled.resume.state records its first fiel
 row after the write in each time series); then it is resumed. Checks:
   1. the resume removes the later time directory and the later rows, and finishes;
   2. liquid, granular and exchange series: the same times as A (1e-8 s), strictly increasing, no
-     duplicate; the same field writes as A, the end time's included (cfd/mixflowFoam/RunTime.H);
+     duplicate; the same field writes as A, the end time's included (cfd/vofSolver/RunTime.H);
   3. the resume restores the whole state: the first 10 exchanges after the resumed write equal
      A's within 1e-12 relative in every column of postProcessing/coupling/exchange.csv but the
      wall time (`seconds`). A round-off change is the only admissible difference, and it is

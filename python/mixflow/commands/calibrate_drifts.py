@@ -90,7 +90,7 @@ PRESSURE_DEFAULT = "lambdaP"
 # What chi's excess pore pressure is over: the bulk model's rho_f p_m, or the extractor's
 # hydrostatic from the liquid surface (--pore-reference).
 PORE_REFERENCES = ("mixture", "surface")
-# The ratio's range (cfd/mixflowBulkFoam/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
+# The ratio's range (common/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
 RATIO_MIN, RATIO_MAX = -1.0, 1.0
 ESTIMATORS = ("wls", "median", "flux")
 # The extractor's "outside the mixture" mask bits (mixture_extract/DriftCoefficients.h).
@@ -100,7 +100,7 @@ VERTICAL = ("fit", "isotropic", "auto")
 R2_MIN, WIDTH_MAX, FLUX_CANCEL_MIN = 0.5, 1.0, 0.1
 WEIGHTS = {"particles": "particle_equivalents", "samples": "particle_samples", "none": None}
 # prepare/BulkModel.cpp readDrift: alpha_s + lambda alpha_f >= 0.01 (kDriftDenominatorMin in
-# cfd/mixflowBulkFoam/DriftAlgebra.h), |lambda| <= 1e3.
+# common/DriftAlgebra.h), |lambda| <= 1e3.
 DRIFT_DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1e3
 
 

@@ -52,30 +52,14 @@ int main(int argc, char *argv[]) {
 #include "createStandaloneSolver.H"
   // clang-format on
 
-  // A progress line every 5 s of wall time (rank 0): simulated time, wall time, estimate to
-  // finish; the Allrun scripts show these lines on screen.
-  mixflow::Progress progress("liquid " + runTime.globalCaseName().name(), runTime.value(),
-                             runTime.endTime().value(), std::cout);
-
-  while (runTime.run()) {
-    // clang-format off
-#include "beginTimeStep.H"
-    // clang-format on
-
-    // The coupling sets voidfraction, Ksl, Us and fSource here (after ++runTime, so that
-    // voidfraction.oldTime() is the previous step's field); standalone they keep their values.
-    // clang-format off
-#include "fluidStep.H"
-    // clang-format on
-
-    runTime.write();
-
-    runTime.printExecutionTime(Info);
-    if (Pstream::master()) progress.update(runTime.value());
-  }
-  if (Pstream::master()) progress.update(runTime.value(), true);
-
-  Info << "End\n" << endl;
+  // The particle fields are those read at the start (or ramped by particleRamp); a coupled solver
+  // sets them before each fluid step instead (apps/mixflowCoupled).
+  const std::string progressName = "liquid";
+  auto beforeFluidStep = [] {};
+  auto afterFluidStep = [] {};
+  // clang-format off
+#include "standaloneTimeLoop.H"
+  // clang-format on
 
   return 0;
 }

@@ -1,5 +1,5 @@
 // mixflowBulkFoam: the quasi two-phase bulk mixture model (Pokhrel et al. 2017; docs/bulk_model.md)
-// of a grain-liquid mixture under air, on mixflowFoam's VOF algorithm (cfd/mixflowFoam, whose
+// of a grain-liquid mixture under air, on mixflowFoam's VOF algorithm (cfd/vofSolver, whose
 // step files it includes): the non-air phase alpha.liquid is the mixture, U its volumetric flux
 // u_m = alpha_s u_s + alpha_f u_f, rho* its constant density (as the paper, which has no mixture
 // density), and its viscosity the bulkMixture model (bulkMixtureViscosity.H: Coulomb-viscoplastic
@@ -39,28 +39,22 @@ int main(int argc, char *argv[]) {
 #include "createBulkFields.H"
   // clang-format on
 
-  mixflow::Progress progress("bulk " + runTime.globalCaseName().name(), runTime.value(),
-                             runTime.endTime().value(), std::cout);
-
-  while (runTime.run()) {
-    // clang-format off
-#include "beginTimeStep.H"
-    // clang-format on
-
+  const std::string progressName = "bulk";
+  // The drift stress as the step's explicit force (fSource), from U of the last step.
+  auto beforeFluidStep = [&] {
     // clang-format off
 #include "bulkDriftStress.H"
-#include "fluidStep.H"
+    // clang-format on
+  };
+  // The reconstructed phase fields, at write times.
+  auto afterFluidStep = [&] {
+    // clang-format off
 #include "writeBulkFields.H"
     // clang-format on
-
-    runTime.write();
-
-    runTime.printExecutionTime(Info);
-    if (Pstream::master()) progress.update(runTime.value());
-  }
-  if (Pstream::master()) progress.update(runTime.value(), true);
-
-  Info << "End\n" << endl;
+  };
+  // clang-format off
+#include "standaloneTimeLoop.H"
+  // clang-format on
 
   return 0;
 }

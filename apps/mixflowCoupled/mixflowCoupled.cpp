@@ -1,8 +1,10 @@
 // mixflowCoupled: two-way CFD-DEM coupling in one process -- mixflowFoam's fluid (OpenFOAM VOF,
 // formulation B; cfd/README.md) and LIGGGHTS particles driven as a library, exchanging every
 // exchangeEvery DEM steps (one CFD step). The fluid algorithm is mixflowFoam's own: this file is
-// mixflowFoam.cpp's time loop with the coupling inserted where updateCouplingFields.H expects it,
-// and it includes mixflowFoam's step files unchanged (cfd/mixflowFoam/*.H).
+// the standalone solvers' time loop (cfd/vofSolver/standaloneTimeLoop.H) with the coupling
+// inserted where updateCouplingFields.H expects it, and it includes mixflowFoam's step files
+// unchanged (cfd/vofSolver/*.H); its own start-up steps are the step files beside it
+// (createCoupling.H, writeStartFields.H, keepRestartState.H).
 //
 // Case: an interFoam/mixflowFoam case plus constant/couplingProperties (coupling/README.md) and
 // the particle scene as LIGGGHTS commands (its demScript, e.g. system/in.liggghts).
@@ -67,76 +69,25 @@ int runCoupled(int argc, char* argv[]) {
 #include "createFvOptions.H"
   // clang-format on
 
-  if (particleRamp.valid()) {
-    FatalErrorInFunction << "particleRamp (mixflowProperties) is a standalone verification mode; "
-                            "remove it for a coupled run"
-                         << exit(FatalError);
-  }
-
-  const bool resume = args.found("resume");
-  mixflow::coupling::FoamCoupling coupling(mesh, voidfraction, Ksl, Us, fSource, solidResponse, U,
-                                           rho, p, mixture, turbulence(), g, voidfractionMin,
-                                           viscousStress, resume);
-  coupling.exchange();  // eps_f at the start time, forces for the first DEM interval
-  // The particles were there before the start: eps_f(0) is also the old-time level (otherwise
-  // d(eps_f)/dt of the start would see the change from the field read at construction).
-  voidfraction.oldTime() == voidfraction;
-  // A mixture scene (constant/sceneProperties) also records the granular outputs of a dry scene.
-  std::unique_ptr<mixflow::coupling::MixtureMonitor> monitor;
-  try {
-    monitor = mixflow::coupling::MixtureMonitor::createIfMixture(
-        runTime.globalPath(), coupling.demSession(), std::cout, resume);
-  } catch (const std::exception& e) {
-    FatalErrorInFunction << e.what() << exit(FatalError);
-  }
-  if (resume && !monitor)
-    FatalErrorInFunction << "-resume continues mixture scenes (constant/sceneProperties with "
-                            "content mixture) only"
-                         << exit(FatalError);
-  {
-    // clang-format off
-#include "updateCouplingFields.H"
-    // clang-format on
-  }
-
   // clang-format off
+#include "createCoupling.H"
 #include "initCorrectPhi.H"
+#include "writeStartFields.H"
   // clang-format on
-
-  // The start time's p and coupling fields (eps_f of the settled sample), so the first write
-  // time is complete for ParaView and mixflowExtract (0/ holds only the inputs otherwise).
-  if (runTime.timeIndex() == 0) {
-    p.write();
-    voidfraction.write();
-    Ksl.write();
-    Us.write();
-    fSource.write();
-  }
 
   turbulence->validate();
 
-  // What a resumed run needs beyond the fields, written with them: the last pressure equation's
-  // 1/A on faces and whether eps_f changed in the last step (createFields.H), and the mixture
-  // viscosity the next exchange samples, that of the step's last mixture.correct() (before its
-  // momentum equation), which the mixture's construction would recompute from the written U.
-  rAUfLast.writeOpt() = IOobject::AUTO_WRITE;
-  solverState.writeOpt() = IOobject::AUTO_WRITE;
-  volScalarField& nuMixture = mesh.lookupObjectRef<volScalarField>("nu");
-  nuMixture.writeOpt() = IOobject::AUTO_WRITE;
-  if (resume) {
-    IOobject io("nu", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::NO_WRITE, false);
-    if (io.typeHeaderOk<volScalarField>(true)) nuMixture == volScalarField(io, mesh);
-  }
+  // clang-format off
+#include "keepRestartState.H"
+  // clang-format on
 
   {
-  // clang-format off
+    // clang-format off
 #include "CourantNo.H"
-      // clang-format on
+    // clang-format on
   }
 
-      Info
-      << "\nStarting time loop\n"
-      << endl;
+  Info << "\nStarting time loop\n" << endl;
 
   while (runTime.run()) {
     // clang-format off
