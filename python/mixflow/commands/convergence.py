@@ -17,7 +17,7 @@ ladders.LABEL.SCENE.VALUE, with each observable's change against the finest valu
 listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
 both reach (ladders.LABEL.SCENE.converged); converged.SCENE is true once every ladder of the
-scene has, and truth_tier stays null until then; packing lists each ladder's sample solid
+scene has (a one-value ladder, a noise-floor run, is none), and truth_tier stays null until then; packing lists each ladder's sample solid
 fraction against the target. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
 run_settled_bed.py --json) are gathered into static_bed.
 """
@@ -141,8 +141,11 @@ def main(argv=None):
     ladder = collect(args)
     ladder["command"] = " ".join(["mixflow convergence"] + (argv or sys.argv[1:]))
     summary.setdefault("ladders", {}).setdefault(args.label, {})[args.scene] = ladder
+    # A scene is converged once every ladder of it is; a one-value ladder (a noise-floor run
+    # beside a ladder's value) is no ladder.
     summary["converged"] = {
-        scene: all(lad[scene]["converged"] for lad in summary["ladders"].values() if scene in lad)
+        scene: all(lad[scene]["converged"] for lad in summary["ladders"].values()
+                   if scene in lad and len(lad[scene]["values"]) >= 2)
         for scene in {sc for lad in summary["ladders"].values() for sc in lad}}
     beds = {}
     for path in sorted(glob.glob(os.path.join(args.out, "static_bed", "*.json"))):
