@@ -179,7 +179,7 @@ Schema makeSchema() {
                     "centre, centre to contact point for a wall), from the contact snapshots "
                     "(demDict contactSnapshots on); virial: each particle's stress/atom virial "
                     "spread as the particle, without wall contacts; auto: contacts when every "
-                    "snapshot to read has its contact files, else virial (with a warning)"),
+                    "snapshot to read has its contact files, else virial (said in the log)"),
           dictParam("kernel", "the coarse-graining function, for both phases"),
           wordParam("kernel.shape", s.kernelShape, {"bins", "lucy", "gaussian"},
                     "bins: exact bins (a particle by its volume inside the bin, a contact line by "
