@@ -76,20 +76,21 @@ void CoarseGrainKernel::segmentWeights(double x1, double y1, double x2, double y
                                        std::vector<std::pair<int, double>>& out) const {
   const double ex = x2 - x1, ey = y2 - y1;
   if (!exactBins()) {
-    // Weights of the Gauss points, merged per bin.
-    const size_t start = out.size();
-    std::vector<std::pair<int, double>> pts;
+    // Weights of the Gauss points, merged per bin in a dense scratch (a line reaches tens of
+    // bins, six points each).
+    if (sum_.size() != static_cast<size_t>(grid_.size())) sum_.assign(grid_.size(), 0.0);
+    touched_.clear();
     for (int g = 0; g < kGauss; ++g) {
-      pts.clear();
-      pointWeights(x1 + kNode[g] * ex, y1 + kNode[g] * ey, pts);
-      for (const auto& [b, w] : pts) {
-        auto it = std::find_if(out.begin() + start, out.end(),
-                               [b = b](const auto& e) { return e.first == b; });
-        if (it == out.end())
-          out.emplace_back(b, kWeight[g] * w);
-        else
-          it->second += kWeight[g] * w;
+      points_.clear();
+      pointWeights(x1 + kNode[g] * ex, y1 + kNode[g] * ey, points_);
+      for (const auto& [b, w] : points_) {
+        if (sum_[b] == 0) touched_.push_back(b);
+        sum_[b] += kWeight[g] * w;
       }
+    }
+    for (int b : touched_) {
+      out.emplace_back(b, sum_[b]);
+      sum_[b] = 0;
     }
     return;
   }

@@ -43,7 +43,10 @@ class CoarseGrainKernel {
   const AveragingGrid& grid_;
   Shape shape_;
   double width_, cutoff_, norm_;
-  mutable std::vector<double> cuts_;
+  // Scratch of segmentWeights; the kernel is used from one thread at a time.
+  mutable std::vector<double> cuts_, sum_;
+  mutable std::vector<int> touched_;
+  mutable std::vector<std::pair<int, double>> points_;
 };
 
 }  // namespace mixflow::mx
