@@ -1,8 +1,11 @@
 #include "ContactSnapshot.h"
 
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "Dictionary.h"
@@ -22,29 +25,38 @@ struct TextDump {
 
 TextDump readTextDump(const std::string& path, const std::string& countItem,
                       const std::string& columnsItem) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file (missing or unreadable)");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   auto fail = [&](const std::string& why) { throw InputError(path + ": " + why); };
-  std::string line;
-  long count = -1;
-  TextDump d;
-  while (std::getline(in, line)) {
-    if (line.rfind("ITEM: " + countItem, 0) == 0) {
-      if (!(in >> count) || count < 0) fail("no entry count after 'ITEM: " + countItem + "'");
-    } else if (line.rfind("ITEM: " + columnsItem, 0) == 0) {
-      std::istringstream ls(line.substr(6 + columnsItem.size()));
-      for (std::string c; ls >> c;) d.columns.push_back(c);
-      break;
-    }
-  }
-  if (count < 0 || d.columns.empty())
+  auto lineAfter = [&](const std::string& item) -> size_t {
+    const size_t at = text.find("ITEM: " + item);
+    return at == std::string::npos ? at : at + 6 + item.size();
+  };
+  const size_t countAt = lineAfter(countItem), columnsAt = lineAfter(columnsItem);
+  if (countAt == std::string::npos || columnsAt == std::string::npos)
     fail("not a LIGGGHTS dump (no 'ITEM: " + countItem + "' and 'ITEM: " + columnsItem + "')");
+  long count = -1;
+  std::istringstream(text.substr(countAt, 32)) >> count;
+  if (count < 0) fail("no entry count after 'ITEM: " + countItem + "'");
+  TextDump d;
+  const size_t eol = std::min(text.find('\n', columnsAt), text.size());
+  std::istringstream ls(text.substr(columnsAt, eol - columnsAt));
+  for (std::string c; ls >> c;) d.columns.push_back(c);
+  if (d.columns.empty()) fail("no columns after 'ITEM: " + columnsItem + "'");
+  // The rows: numbers parsed in place (the files hold millions of them).
+  const char* p = text.data() + eol;
+  const char* end = text.data() + text.size();
   d.rows.assign(count, std::vector<double>(d.columns.size()));
   for (long r = 0; r < count; ++r)
-    for (double& v : d.rows[r])
-      if (!(in >> v))
+    for (double& v : d.rows[r]) {
+      while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+      const auto res = std::from_chars(p, end, v);
+      if (res.ec != std::errc())
         fail("holds " + std::to_string(r) + " complete rows, the header says " +
              std::to_string(count) + " (truncated dump?)");
+      p = res.ptr;
+    }
   return d;
 }
 
