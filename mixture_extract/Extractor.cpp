@@ -280,15 +280,18 @@ ExtractReport Extractor::run() {
                            (fs::path(opt_.caseDir) / "VTK" / "particles.vtk.series").string() +
                            " for t = " + num(series[k].time) + " s)");
   // Contact stress along the contact lines when the snapshots to read have their contact files.
-  bool allContacts = true;
+  std::string lacking;  // the first snapshot to read without its contact files
   for (const Plan& p : plans)
     if (p.state == WindowState::Ready)
       for (size_t k : p.snapshots)
-        allContacts = allContacts && contactSnapshotExists(series[k].file);
+        if (lacking.empty() && !contactSnapshotExists(series[k].file))
+          lacking = dem::pairContactPath(series[k].file);
+  const bool allContacts = lacking.empty();
   if (s.stressSource == "contacts" && !allContacts)
-    throw InputError(dictFile + ": entry 'particles.stress' is contacts but snapshots lack their " +
-                     "contact files VTK/contacts/pairs_<step>.txt and walls_<step>.txt (run the " +
-                     "DEM with demDict contactSnapshots on), or set it to virial or auto");
+    throw InputError(
+        dictFile + ": entry 'particles.stress' is contacts but snapshots lack their " +
+        "contact files VTK/contacts/pairs_<step>.txt and walls_<step>.txt (first: " + lacking +
+        "; run the DEM with demDict contactSnapshots on), or set it to " + "virial or auto");
   const bool useContacts =
       s.stressSource == "contacts" || (s.stressSource == "auto" && allContacts);
   const std::vector<dem::WallPlane> walls = dem::wallPlanes(scene);
