@@ -96,6 +96,16 @@ Schema makeSchema() {
               "(VTK/particles/particles_N.bin at step N, full precision), which mixflowExtract "
               "reads without parsing text; costs 176 bytes a particle, about 0.55× the VTK's "
               "disk space, and less write time than the VTK"),
+          switchParam(
+              "contactSnapshots", m.contactSnapshots,
+              "beside each snapshot, every contact's force (VTK/contacts/pairs_N.txt, LIGGGHTS "
+              "compute pair/gran/local: the two particle ids and the force) and the wall forces "
+              "of the particles touching a wall (VTK/contacts/walls_N.txt, fix wall/gran "
+              "store_force): mixflowExtract's coarse-grained stress along the contact lines, "
+              "wall contacts included (mixture_extract/README.md). Text dumps of about 155 bytes "
+              "a particle (3 contacts of 51 bytes; the VTK and binary snapshot take about 500), "
+              "so a case's snapshots grow by about 30 %; off: the extractor takes each "
+              "particle's stress/atom virial, without the wall contacts"),
           dictParam("settle", "the settling of the sample behind the gate"),
           scalarParam("settle.friction", s.friction, Range::nonNegative(), "",
                       "**Open choice** (sample preparation): particle friction while settling "
@@ -239,6 +249,7 @@ DemDict DemDict::read(const Dictionary& d) {
   m.balanceInterval = sc.scalar(d, "balanceInterval");
   m.balanceWeight = sc.word(d, "balanceWeight");
   m.binarySnapshots = sc.flag(d, "binarySnapshots");
+  m.contactSnapshots = sc.flag(d, "contactSnapshots");
   readSettle(sc, d.subDictOrEmpty("settle"), r.settle);
   return r;
 }

@@ -71,6 +71,9 @@ struct DemSpec {
   // its neighbours within r_i + r_j + skin) or contacts (1 + half the grains it touches).
   std::string balanceWeight = "pairs";
   bool binarySnapshots = true;  // a binary dump beside each VTK snapshot (dem/SnapshotFiles.h)
+  // Contact and wall-contact forces beside each snapshot (dem/ContactDumps.h): the coarse-grained
+  // stress of mixflowExtract; off by default, as they add about 30 % to the snapshots' disk space.
+  bool contactSnapshots = false;
   // Savage number at the section x = savageX (docs/model.md §8): the shear rate is the
   // least-squares slope du/dy over the top savageLayers populated bins (height d each) of the
   // u(y) profile in the slab |x - savageX| <= d; tan(phi) is not given by the paper.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ContactDumps.h"
 #include "Dictionary.h"
 #include "SnapshotFiles.h"
 
@@ -162,6 +163,9 @@ void CollapseRecorder::startSnapshots() {
                  snapshotColumns());
   else if (rank_ == 0)
     removeBinarySnapshots(scene_.caseDir);  // an earlier run's: the extractor would prefer them
+  // Contact forces at the same steps: the extractor's coarse-grained stress (ContactDumps.h).
+  if (!scene_.dem.contactSnapshots && rank_ == 0) removeContactDumps(scene_.caseDir);
+  lig_.commands(contactDumpCommands(scene_, snapshotEvery_));
 }
 
 bool CollapseRecorder::atSnapshot() const { return (lig_.step() - step0_) % snapshotEvery_ == 0; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "ContactDumps.h"
 #include "Dictionary.h"
 
 namespace mixflow::dem {
@@ -47,9 +48,9 @@ std::vector<std::string> materialCommands(const ParticleMaterial& p, double youn
 }
 
 std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
-                        const std::string& plane, double position) {
+                        const std::string& plane, double position, const std::string& options) {
   return "fix " + id + " all wall/gran " + contactModel(p) + " primitive type " +
-         std::to_string(kWallType) + " " + plane + " " + fmt(position) + " " +
+         std::to_string(kWallType) + " " + plane + " " + fmt(position) + options + " " +
          contactSettings(limitForce);
 }
 
@@ -110,17 +111,20 @@ std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bo
   const bool lf = s.dem.limitForce;
   c.push_back("timestep " + fmt(timeStep));
   c.push_back("fix gravi all gravity 9.81 vector 0.0 -1.0 0.0");
-  c.push_back(wallCommand("wBottom", p, lf, "yplane", 0.0));
-  c.push_back(wallCommand("wBack", p, lf, "xplane", 0.0));
+  c.push_back(wallCommand("wBottom", p, lf, "yplane", 0.0, wallForceOption(s)));
+  c.push_back(wallCommand("wBack", p, lf, "xplane", 0.0, wallForceOption(s)));
   if (!periodic) {
-    c.push_back(wallCommand("wSide0", p, lf, "zplane", 0.0));
-    c.push_back(wallCommand("wSide1", p, lf, "zplane", s.sample.width));
+    c.push_back(wallCommand("wSide0", p, lf, "zplane", 0.0, wallForceOption(s)));
+    c.push_back(wallCommand("wSide1", p, lf, "zplane", s.sample.width, wallForceOption(s)));
   }
-  if (withGate) c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length));
+  if (withGate)
+    c.push_back(wallCommand("wGate", p, lf, "xplane", s.sample.length, wallForceOption(s)));
   c.push_back("fix integr all nve/sphere");
   // Per-particle contact stress (stress x volume, N m; particle-particle contacts only) for the
   // granular pressure p_s of mixture_extract.
   c.push_back("compute pstress all stress/atom");
+  // Contact forces for the coarse-grained stress when contact snapshots are on (ContactDumps.h).
+  if (const std::string pgl = pairContactCompute(s); !pgl.empty()) c.push_back(pgl);
   // Particles leave through the outlet and the top: deleted by region, counted by the driver.
   c.push_back("region outletRegion block " + fmt(s.channel.length) +
               " INF INF INF INF INF units box");

@@ -33,8 +33,9 @@ std::vector<std::string> contactCommands(const ParticleMaterial& p, double young
                                          bool limitForce);
 
 // One primitive wall of the wall material: e.g. wallCommand("wBack", p, true, "xplane", 0.0).
+// options: keywords LIGGGHTS takes between the plane and the contact settings (" store_force yes").
 std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
-                        const std::string& plane, double position);
+                        const std::string& plane, double position, const std::string& options = "");
 
 // Raises a sample settled softer (demDict settle.stiffenFrom) to the scene's moduli and DEM step,
 // keeping the settling friction and no rolling resistance; takes effect at the next run.

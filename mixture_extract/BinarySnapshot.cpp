@@ -1,6 +1,7 @@
 #include "BinarySnapshot.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -84,6 +85,7 @@ ParticleSnapshot readBinarySnapshot(const std::string& path, double time) {
        {&snap.x, &snap.y, &snap.z, &snap.vx, &snap.vy, &snap.vz, &snap.mass, &snap.radius})
     a->resize(n);
   snap.stress.resize(n);
+  snap.id.resize(n);
   std::vector<double> block(kBlockRows * kSnapshotColumnCount);
   size_t i = 0;
   for (int32_t k = 0; k < chunks; ++k) {
@@ -101,6 +103,7 @@ ParticleSnapshot readBinarySnapshot(const std::string& path, double time) {
       in.read(block.data(), m * cols * sizeof(double), what);
       for (size_t j = 0; j < m; ++j, ++i) {
         const double* r = block.data() + j * kSnapshotColumnCount;
+        snap.id[i] = std::lround(r[kColId]);
         snap.x[i] = r[kColX];
         snap.y[i] = r[kColY];
         snap.z[i] = r[kColZ];

@@ -174,6 +174,22 @@ Schema makeSchema() {
                     {"auto", "included", "excluded"},
                     "whether c_pstress holds the kinetic term −m v v; auto: from the `compute "
                     "pstress` line of dem/in.liggghts"),
+          wordParam("particles.stress", s.stressSource, {"auto", "contacts", "virial"},
+                    "the contact stress: contacts: −Σ f ⊗ b along each contact line (centre to "
+                    "centre, centre to contact point for a wall), from the contact snapshots "
+                    "(demDict contactSnapshots on); virial: each particle's stress/atom virial "
+                    "spread as the particle, without wall contacts; auto: contacts when every "
+                    "snapshot to read has its contact files, else virial (said in the log)"),
+          dictParam("kernel", "the coarse-graining function, for both phases"),
+          wordParam("kernel.shape", s.kernelShape, {"bins", "lucy", "gaussian"},
+                    "bins: exact bins (a particle by its volume inside the bin, a contact line by "
+                    "its length inside, a fluid cell by its centre); lucy: Lucy polynomial of "
+                    "cutoff 2 w; gaussian: Gaussian of standard deviation w cut at 3 w; kernels "
+                    "are evaluated at the bin centres, points (particle and cell centres) and "
+                    "contact lines weighted by the kernel"),
+          scalarParam("kernel.width", s.kernelWidth, Range::closed(0.5, 10), "d",
+                      "w in particle diameters (lucy, gaussian); fields plateau for 1 < w/d < 3 "
+                      "(mixture_extract/README.md)"),
           // Snapshot times are step * dt, off the nominal multiples of writeInterval by up to
           // dt / 2.
           scalarParam("timeTolerance", 0, Range::nonNegative(), "s",
@@ -329,6 +345,12 @@ ExtractSettings ExtractSettings::read(const std::string& dictFile, const dem::Sc
   const Dictionary p = d.subDictOrEmpty("particles");
   sc.allowOnly(p, "particles");
   s.stressKineticTerm = sc.word(p, "particles.stressKineticTerm");
+  s.stressSource = sc.word(p, "particles.stress");
+  const Dictionary k = d.subDictOrEmpty("kernel");
+  sc.allowOnly(k, "kernel");
+  s.kernelShape = sc.word(k, "kernel.shape");
+  s.kernelWidth = sc.scalar(k, "kernel.width");
+  s.kernelWidthMetres = s.kernelWidth * scene.particles.diameter;
 
   // The DEM step is validated (it throws above its limit) even when timeTolerance is given.
   const double halfStep = 0.5 * scene.timeStepUsed();
@@ -381,8 +403,10 @@ std::string ExtractSettings::fingerprint() const {
     << ' ' << solidDensity << "; viscosity " << haveViscosities << ' ' << nuSolid << ' ' << nuFluid
     << "; fluid " << fluidSource << ' ' << fluidNames.liquidFraction << ' '
     << fluidNames.voidFraction << ' ' << fluidNames.velocity << ' ' << fluidNames.pressure << ' '
-    << fluidNames.centres << ' ' << fluidNames.volumes << "; stress " << stressKineticTerm
-    << "; tol " << timeTolerance << "; pairing " << pairTolerance << " solved-times-only; regions";
+    << fluidNames.centres << ' ' << fluidNames.volumes << "; stress " << stressKineticTerm << ' '
+    << stressSource << "; kernel " << kernelShape << ' '
+    << (kernelShape == "bins" ? 0.0 : kernelWidth) << "; tol " << timeTolerance << "; pairing "
+    << pairTolerance << " solved-times-only; regions";
   for (const auto& r : regions)
     s << ' ' << r.name << ' ' << r.x0 << ' ' << r.x1 << ' ' << r.y0 << ' ' << r.y1;
   return s.str();

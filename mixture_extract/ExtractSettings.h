@@ -59,7 +59,13 @@ struct ExtractSettings {
   std::string fluidSource = "auto";  // auto | none | openfoam
   FoamFieldNames fluidNames;
   std::string stressKineticTerm = "auto";  // auto | included | excluded
-  double timeTolerance = 0;                // s
+  // Contact stress: auto (contact snapshots when the case has them, else virial) | contacts
+  // (along each contact line, walls included) | virial (each particle's stress/atom).
+  std::string stressSource = "auto";
+  std::string kernelShape = "bins";  // bins | lucy | gaussian (CoarseGrainKernel.h)
+  double kernelWidth = 2;            // w in particle diameters (lucy, gaussian)
+  double kernelWidthMetres = 0;      // w in metres
+  double timeTolerance = 0;          // s
   // s: a fluid time pairs with the nearest particle snapshot at most this far from it.
   double pairTolerance = 0;
   std::string pairToleranceWhere;

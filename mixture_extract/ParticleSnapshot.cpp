@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -138,6 +139,7 @@ ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
   snap.vy.resize(n);
   snap.vz.resize(n);
   snap.stress.resize(n);
+  snap.id.resize(n);
   for (long a = 0; a < arrays; ++a) {
     const std::string name(sc.token());
     if (name.empty()) sc.fail("file ends before all " + std::to_string(arrays) + " arrays");
@@ -153,7 +155,10 @@ ParticleSnapshot readParticleSnapshot(const std::string& path, double time) {
                 std::to_string(comps));
     };
     const char* nm = name.c_str();
-    if (name == "mass") {
+    if (name == "id") {
+      need(1);
+      for (long i = 0; i < n; ++i) snap.id[i] = std::lround(sc.number(nm));
+    } else if (name == "mass") {
       need(1);
       for (long i = 0; i < n; ++i) snap.mass[i] = sc.number(nm);
       haveMass = true;

@@ -3,7 +3,7 @@
 // VTK/particles.vtk.series; beside them, binary twins of the same columns (BinarySnapshot.h).
 //
 // Arrays used (LIGGGHTS quantity in brackets):
-//   POINTS x, y, z [x y z]; mass [mass]; radius [radius]; v [vx vy vz];
+//   POINTS x, y, z [x y z]; id [id]; mass [mass]; radius [radius]; v [vx vy vz];
 //   c_pstress[1-3], c_pstress[4-6] [compute stress/atom: xx yy zz, xy xz yz], units N m (stress x
 //   volume), LAMMPS sign: the NEGATIVE of the per-atom pressure tensor times volume,
 //   S_i = -(m v v + W_i) when the compute has the kinetic term (plain `compute ID all stress/atom`,
@@ -26,6 +26,7 @@ struct ParticleSnapshot {
   std::vector<double> mass;                   // kg
   std::vector<double> radius;                 // m
   std::vector<std::array<double, 6>> stress;  // c_pstress: xx yy zz xy xz yz (N m, LAMMPS sign)
+  std::vector<long> id;                       // LIGGGHTS atom id (the contact dumps name these)
   size_t size() const { return x.size(); }
 };
 

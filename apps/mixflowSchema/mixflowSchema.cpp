@@ -52,7 +52,7 @@ std::vector<Table> tables() {
       {"bulkMixtureCoeffs", mixflow::BulkMixtureCoeffs::schema(), {""}},
       {"extractDict",
        mixflow::mx::ExtractSettings::schema(),
-       {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "regions.<name>"}},
+       {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "kernel", "regions.<name>"}},
   };
 }
 

@@ -22,6 +22,8 @@ Asserts (tolerances and why):
     snapshot mean of a count that does not change while nothing leaves; the grid starts one radius
     behind the back wall and below the floor, because the grains there overlap the walls by their
     contact deflection: 6e-7 and 1.4e-7 of the volume).
+With --dem contactSnapshots=on the coupled run writes its contact snapshots (dem/ContactDumps.h)
+and the extraction takes the stress along the contact lines (HDF5 attribute stress_source).
 With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
 (couplingProperties entries) and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the
 same checks run on that variant; --grain-energy-max E also
@@ -92,6 +94,8 @@ def main():
     ap.add_argument("--drag-viscosity", help="DiFeliceDragCoeffs dragViscosity of the run")
     ap.add_argument("--cfd", action="append", default=[], metavar="ENTRY=VALUE",
                     help="system/cfdDict entry of the run (added, or changed if the case has it)")
+    ap.add_argument("--dem", action="append", default=[], metavar="ENTRY=VALUE",
+                    help="system/demDict entry of the run (added, or changed if the case has it)")
     ap.add_argument("--grain-energy-max", type=float,
                     help="J: bound of max_t [KE_p(t) - (PE_p(0) - PE_p(t))]")
     ap.add_argument("--divergence", action="store_true",
@@ -132,6 +136,7 @@ def main():
     coupling = os.path.join(case, "constant", "couplingProperties")
     set_entries(coupling, a.couple)
     set_entries(os.path.join(case, "system", "cfdDict"), a.cfd)
+    set_entries(os.path.join(case, "system", "demDict"), a.dem)
     with open(coupling, "a") as f:
         if a.drag_viscosity:
             f.write(f"DiFeliceDragCoeffs {{ dragViscosity {a.drag_viscosity}; }}   // test option\n")
@@ -269,6 +274,12 @@ def main():
         print(f"  window 0: particle volume in bins {vol:.6e} m3 vs N Vp {nwin * vp:.6e} m3 "
               f"(relative {err:.2e}, limit 1e-9)")
         ok &= err <= 1e-9
+        # With the DEM's contact snapshots the stress is taken along the contact lines.
+        source = h.attrs["stress_source"]
+        source = source.decode() if isinstance(source, bytes) else source
+        want = "contacts" if "contactSnapshots=on" in a.dem else "virial"
+        print(f"  stress from {source} (expected {want})")
+        ok &= source == want
     if not ok:
         fc.fail("mixture case checks failed (see above)")
     print("PASS")

@@ -89,7 +89,8 @@ TEST(Drift, LambdaOfUniformDriftIsExact) {
     f.p = 500;
     return f;
   });
-  BinAccumulator acc(g, true);
+  CoarseGrainKernel bins(g, "bins", 0);
+  BinAccumulator acc(g, bins, true, 0);
   for (double t : times) {
     ParticleSnapshot s = base;
     s.time = t;
@@ -159,7 +160,8 @@ TEST(Drift, StaticColumnPressureIsTheWeightAbove) {
       }
   for (const int ny : {12, 6, 4, 3}) {
     const AveragingGrid g(0.0, 0.2, 3, 0.0, layers * d, ny, 3 * d);
-    BinAccumulator acc(g, false);
+    CoarseGrainKernel bins(g, "bins", 0);
+    BinAccumulator acc(g, bins, false, 0);
     acc.addSnapshot(s);
     const WindowResult res = finaliseWindow({0, 1, "test"}, acc, g, baseSettings(g));
     double worst = 0;
@@ -208,7 +210,8 @@ TEST(Drift, ZeroVelocityBinsAreMaskedAndCounted) {
   WindowResult res;
   {
     FpTraps traps;
-    BinAccumulator acc(g, false);
+    CoarseGrainKernel bins(g, "bins", 0);
+    BinAccumulator acc(g, bins, false, 0);
     acc.addSnapshot(s);
     acc.addFluid(fluid.cells(0.0));
     res = finaliseWindow({0, 1, "test"}, acc, g, st);
@@ -278,7 +281,8 @@ TEST(Drift, LittleLiquidAndFewParticlesAreMasked) {
     f.p = 100;
     return f;
   });
-  BinAccumulator acc(g, false);
+  CoarseGrainKernel bins(g, "bins", 0);
+  BinAccumulator acc(g, bins, false, 0);
   acc.addSnapshot(s);
   acc.addFluid(fluid.cells(0.0));
   ExtractSettings st = baseSettings(g);
@@ -314,7 +318,8 @@ TEST(Drift, StreamingStressUsesFluctuationsAboutTheBinMean) {
     const double vx = drift + sgn * v0, m = 2500 * sphereVolume(r);
     addParticle(s, 0.05 + sgn * 0.02, 0.05, 0.05, r, 2500, vx, 0, 0, {-m * vx * vx, 0, 0, 0, 0, 0});
   }
-  BinAccumulator acc(g, true);
+  CoarseGrainKernel bins(g, "bins", 0);
+  BinAccumulator acc(g, bins, true, 0);
   acc.addSnapshot(s);
   const WindowResult res = finaliseWindow({0, 1, "test"}, acc, g, baseSettings(g));
   const double m = 2500 * sphereVolume(r);
@@ -345,7 +350,8 @@ TEST(Drift, MassBalanceResidual) {
                                  f.uy = wSign * c * y;
                                  return f;
                                });
-    BinAccumulator acc(g, false);
+    CoarseGrainKernel bins(g, "bins", 0);
+    BinAccumulator acc(g, bins, false, 0);
     acc.addSnapshot(s);
     acc.addFluid(fluid.cells(0.0));
     const WindowResult res = finaliseWindow({0, 1, "test"}, acc, g, baseSettings(g));
@@ -393,7 +399,8 @@ TEST(Drift, PorePressureSplitsIntoHydrostaticAndExcess) {
                          : (y < h ? rhoF * g0 * (h - y) : rhoAir * g0 * (h - y)) + excess(x, y));
         return f;
       });
-  BinAccumulator acc(g, false);
+  CoarseGrainKernel bins(g, "bins", 0);
+  BinAccumulator acc(g, bins, false, 0);
   acc.addSnapshot(s);
   acc.addFluid(fluid.cells(0.0));
   const ExtractSettings st = baseSettings(g);

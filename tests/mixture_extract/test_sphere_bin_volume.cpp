@@ -165,7 +165,8 @@ TEST(SphereBinVolume, TotalParticleVolumeIsConserved) {
       s.stress.push_back({});
       total += sphereVolume(r);
     }
-    BinAccumulator acc(g, true);
+    CoarseGrainKernel bins(g, "bins", 0);
+    BinAccumulator acc(g, bins, true, 0);
     acc.addSnapshot(s);
     double binned = 0;
     for (const auto& b : acc.bins()) binned += b.particleVolume;
@@ -197,7 +198,8 @@ TEST(SphereBinVolume, UniformLatticeGivesExactAlphaInEveryBin) {
         s.mass.push_back(1.0);
         s.stress.push_back({});
       }
-  BinAccumulator acc(g, false);
+  CoarseGrainKernel bins(g, "bins", 0);
+  BinAccumulator acc(g, bins, false, 0);
   acc.addSnapshot(s);
   const double exact = sphereVolume(r) / (a * a * a);
   double worst = 0;

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Granular pressure on a real LIGGGHTS packing: the settled column of tests/collapse/column (about 1700
 beads of 12 mm, periodic width, softened 7 MPa) at the gate opening, t = 0, from mixflowDem's own
-snapshot (positions, c_pstress from compute stress/atom). On bins of 2 d in the column's interior
-(x in [d.., 0.216] m, away from the back wall and the gate):
+snapshot (positions, c_pstress from compute stress/atom: the virial route of particles.stress, as
+the run writes no contact snapshots; extract.contact_stress has the contact-line route). On bins
+of 2 d in the column's interior (x in [d.., 0.216] m, away from the back wall and the gate):
   - the vertical normal stress -sigma_yy of rows 1-5 equals the weight of the material above the
     bin centre, rho_s g int alpha_s dy (from the extracted alpha_s, averaged over the columns),
     within 5 % (measured: about 1 %; the rest of the weight goes to the back wall and the gate by
