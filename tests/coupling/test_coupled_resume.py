@@ -5,7 +5,7 @@ mixflowCoupled -resume) is the uninterrupted run.
 usage: test_coupled_resume.py ROOT BINDIR WORKDIR [RANKS]
 
 The scene is the quick HB&P (cases/W+P-quick with case HB+P's liquid). Run A goes to 0.15 s; run B
-(endTime 0.15 s, A's settled sample) is killed with SIGKILL (its process group: Allrun, the solver,
+(endTime 0.15 s, A's settled sample) is killed with SIGKILL (every process of its session: Allrun, the solver,
 mpirun and its ranks) as soon as dem/coupled.resume.state records its first field write, at
 0.05 s; what a kill during a later write leaves is added (a half-written later time directory, a
 row after the write in each time series); then it is resumed. Checks:
@@ -107,16 +107,31 @@ def state_time(d):
         return None
 
 
+def kill_session(sid):
+    """SIGKILL to every process of session SID at once. Open MPI gives each rank a process group
+    of its own, so killing Allrun's group leaves the ranks running until they notice mpirun is
+    gone (long enough to write another time); a machine that dies takes them all."""
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            if int(fields[3]) == sid:  # stat fields after the name: state ppid pgrp session
+                os.kill(int(pid), signal.SIGKILL)
+        except (OSError, ValueError, IndexError):
+            pass
+
+
 def run_killed(d, settled, after):
-    """Allrun in its own session, killed with SIGKILL (the whole process group) once its state
-    records a field write at `after` s or later. Returns the exit status and the log."""
+    """Allrun in its own session, killed with SIGKILL (every process of the session: Allrun,
+    mpirun, the ranks) once its state records a field write at `after` s or later. Returns the
+    exit status and the log."""
     log = open(os.path.join(d, "log.Allrun"), "w")
     p = subprocess.Popen(["./Allrun", ranks, settled], cwd=d, env=env, stdout=log,
                          stderr=subprocess.STDOUT, start_new_session=True)
     while p.poll() is None:
         t = state_time(d)
         if t is not None and t >= after - 1e-3:
-            os.killpg(p.pid, signal.SIGKILL)
+            kill_session(p.pid)
             break
         time.sleep(0.02)
     rc = p.wait()
