@@ -95,7 +95,8 @@ void checkCoupledStep(const LiquidCase& c, const coupling::CouplingProperties& p
 }
 
 // Terminal velocity of a lone sphere under Di Felice's single-particle drag,
-// Cd = (0.63 + 4.8 / sqrt(Re))^2 (coupling/models/force/DiFeliceDrag.cpp at eps_f = 1); 0 if it does not sink.
+// Cd = (0.63 + 4.8 / sqrt(Re))^2 (coupling/models/force/DiFeliceDrag.cpp at eps_f = 1); 0 if it
+// does not sink.
 double terminalVelocity(double d, double rhoS, double rhoF, double mu) {
   if (rhoS <= rhoF || mu <= 0) return 0;
   const double weight = (rhoS - rhoF) * kGravity * d * d * d / 6.0;  // over pi

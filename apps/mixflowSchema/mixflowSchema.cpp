@@ -52,7 +52,8 @@ std::vector<Table> tables() {
       {"bulkMixtureCoeffs", mixflow::BulkMixtureCoeffs::schema(), {""}},
       {"extractDict",
        mixflow::mx::ExtractSettings::schema(),
-       {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "kernel", "regions.<name>"}},
+       {"", "grid", "windows", "thresholds", "viscosity", "fluid", "particles", "kernel",
+        "regions.<name>"}},
   };
 }
 
