@@ -93,8 +93,10 @@ PORE_REFERENCES = ("mixture", "surface")
 # The ratio's range (common/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
 RATIO_MIN, RATIO_MAX = -1.0, 1.0
 ESTIMATORS = ("wls", "median", "flux")
-# The extractor's "outside the mixture" mask bits (mixture_extract/DriftCoefficients.h).
-OUTSIDE_MIXTURE = 1 | 2 | 4 | 8 | 16 | 2048
+# The extractor's "outside the mixture" reasons (mixture_extract/DriftCoefficients.h
+# kOutsideMixture), by the names the file gives its bits.
+OUTSIDE_MIXTURE = ("no_particles", "few_particle_samples", "no_liquid", "little_liquid",
+                   "low_solid_fraction", "unsaturated")
 VERTICAL = ("fit", "isotropic", "auto")
 # Ill-posed drift: R^2 below, 16-84 % interval wider than the value times, solid flux cancelling.
 R2_MIN, WIDTH_MAX, FLUX_CANCEL_MIN = 0.5, 1.0, 0.1
@@ -194,7 +196,7 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
     masks = dict(valid)
     if PRESSURE[pressure] == "pore_pressure_ratio" and pore_reference == "mixture":
         xy["pore_pressure_ratio"], masks["pore_pressure_ratio"] = mixture_load(
-            h5, f, rho_s, rho_f, solid_fraction)
+            h5, d, rho_s, rho_f, solid_fraction)
     elif PRESSURE[pressure] == "pore_pressure_ratio":
         if "p_f_excess" not in f:
             raise InputError(f"{h5}: no dataset /fields/p_f_excess (--pressure "
@@ -234,7 +236,16 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
     return out, info, selected
 
 
-def mixture_load(h5, f, rho_s, rho_f, alpha):
+def mixture_mask(d):
+    """The bins inside the mixture: none of the extractor's OUTSIDE_MIXTURE reasons set (finite
+    alpha_s in a file without /masks/reasons)."""
+    if d["reasons"] is None:
+        return np.isfinite(d["fields"]["alpha_s"])
+    outside = sum(d["reason_bits"].get(name, 0) for name in OUTSIDE_MIXTURE)  # distinct bits
+    return (d["reasons"] & outside) == 0
+
+
+def mixture_load(h5, d, rho_s, rho_f, alpha):
     """chi's (load, excess) over the bulk model's reference: with p_m rho_m = p_s + p_f (the
     total stress) and rho_m = alpha rho_s + (1 - alpha) rho_f, the buoyant load alpha (rho_s -
     rho_f) p_m = (1 - rho_f / rho_m)(p_s + p_f) and the excess P_f - rho_f p_m; and the bins they
@@ -244,12 +255,10 @@ def mixture_load(h5, f, rho_s, rho_f, alpha):
                          "(the target's bulkProperties solidFraction or sceneProperties "
                          f"sample.solidFraction, else {h5}'s sample_solid_fraction) must be in "
                          "(0, 1)")
+    f = d["fields"]
     gamma = rho_f / (alpha * rho_s + (1 - alpha) * rho_f)
     total = f["p_s"] + f["p_f"]
-    with h5py.File(h5, "r") as h:
-        reasons = h["masks/reasons"][()] if "masks/reasons" in h else None
-    inside = ((reasons & OUTSIDE_MIXTURE) == 0 if reasons is not None
-              else np.isfinite(f["alpha_s"]))
+    inside = mixture_mask(d)
     load = (1 - gamma) * total
     with np.errstate(invalid="ignore"):
         return (load, f["p_f"] - gamma * total), inside & np.isfinite(load) & (load != 0)
@@ -427,11 +436,9 @@ def mass_balance(h5, d, base, lam_u, lam_w):
     the mixture's edge): RMS over the BASE bins that have both derivatives, against the RMS of
     the scale |d/dx| + |d/dy|; and the same for the data's own alpha_s u_s + alpha_f u_f."""
     f = d["fields"]
-    with h5py.File(h5, "r") as h:
-        dx = float(np.diff(h["grid/x_edges"][()]).mean())
-        dy = float(np.diff(h["grid/y_edges"][()]).mean())
-        reasons = h["masks/reasons"][()] if "masks/reasons" in h else None
-    mix = (reasons & OUTSIDE_MIXTURE) == 0 if reasons is not None else np.isfinite(f["alpha_s"])
+    dx = float(np.diff(d["grid"]["x_edges"]).mean())
+    dy = float(np.diff(d["grid"]["y_edges"]).mean())
+    mix = mixture_mask(d)
 
     def deriv(g, axis, h):
         gp, gm = np.roll(g, -1, axis), np.roll(g, 1, axis)

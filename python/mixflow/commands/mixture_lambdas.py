@@ -81,7 +81,8 @@ def load(h5):
     """The arrays of a mixflowExtract file (mixture_extract/README.md), each (window, y bin, x bin)
     but for the windows: {"fields": name -> float array (NaN where masked), "valid": name -> bool
     (the /masks/valid_<name> of the fields that have one), "counts": name -> array, "windows":
-    name -> 1-d array, "attrs": root attributes}."""
+    name -> 1-d array, "grid": name -> 1-d array (x_edges, ...), "reasons": /masks/reasons (None
+    without), "reason_bits": its bits by name, "attrs": root attributes}."""
     with h5py.File(h5, "r") as h:
         out = {"fields": {k: h["fields/" + k][()] for k in h["fields"].keys()},
                "valid": {k[len("valid_"):]: h["masks/" + k][()].astype(bool)
@@ -89,6 +90,14 @@ def load(h5):
                "counts": {k: h["counts/" + k][()] for k in h["counts"].keys()} if "counts" in h
                else {},
                "windows": {k: h["windows/" + k][()] for k in h["windows"].keys()},
+               "grid": {k: h["grid/" + k][()] for k in h["grid"].keys()} if "grid" in h else {},
+               # /masks/reasons and its bits by name (attribute bit_<value> = "<name>: meaning")
+               "reasons": h["masks/reasons"][()] if "masks/reasons" in h else None,
+               "reason_bits": {str(v.decode() if isinstance(v, bytes) else v).split(":")[0]:
+                               int(k[len("bit_"):])
+                               for k, v in (h["masks/reasons"].attrs.items()
+                                            if "masks/reasons" in h else ())
+                               if k.startswith("bit_")},
                "attrs": {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h.attrs.items()},
                "path": h5}
     return out
