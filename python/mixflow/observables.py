@@ -280,6 +280,17 @@ def runout_law(scenes):
 
 # Writing them
 
+def deposit_difference(s, ref):
+    """Relative L1 difference of two scenes' end profiles h(x) (depositProfile.csv, volume
+    depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles."""
+    if not s.deposit or not ref.deposit:
+        return None
+    h, h_ref = col(s.deposit, "h_volume_m"), col(ref.deposit, "h_volume_m")
+    n = min(len(h), len(h_ref))
+    total = float(np.nansum(h_ref[:n]))
+    return float(np.nansum(np.abs(h[:n] - h_ref[:n])) / total) if total > 0 else None
+
+
 def fmt(v, nd=3):
     """Our numbers: NA as '-', floats to ND significant digits."""
     if v is None:

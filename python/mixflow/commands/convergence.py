@@ -4,7 +4,7 @@
 usage: mixflow convergence --scene HB+P --knob couplingProperties.exchangeEvery
            --values 25,10,4,2 [--label NAME] [--tier reference] [--set FILE.ENTRY=VALUE ...]
            [--end 0.5] [--work runs/convergence] [--out results/convergence]
-           [--settled-from WORK] [--report-only]
+           [--settled-from WORK] [--against WORK] [--report-only]
 
 Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALUE --set ...
 --set KNOB=VALUE --set controlDict.endTime=END`, the first value settling the grains and the
@@ -16,7 +16,10 @@ height; scripts/tier_trade.py) and the CPU seconds of each run go to OUT/summary
 ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
 listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
-both reach (ladders.LABEL.SCENE.converged); converged.SCENE is true once every ladder of the
+both reach (ladders.LABEL.SCENE.converged); beside them, the end's deposit profile h(x) against
+the finest's (relative L1, change.VALUE.deposit_h_relative_l1) and the body's front
+(granular_thickness_front_m, where the deposit thins below d); with --against WORK each value's
+change against that run (change_against_base: a noise-floor run against the run it perturbs); converged.SCENE is true once every ladder of the
 scene has (a one-value ladder, a noise-floor run, is none), and truth_tier stays null until then; packing lists each ladder's sample solid
 fraction against the target. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
 run_settled_bed.py --json) are gathered into static_bed.
@@ -54,6 +57,19 @@ def within(row, ref):
     return True
 
 
+def difference(row, ref, s, s_ref):
+    """Each observable's change from ref to row at the times both reach, and the end's deposit
+    profile h(x) against ref's (relative L1)."""
+    d = {}
+    for t, o in row.items():
+        r = ref.get(t)
+        if isinstance(o, dict) and isinstance(r, dict):
+            d[t] = {k: o[k] - r[k] for k in o
+                    if isinstance(o.get(k), float) and isinstance(r.get(k), float)}
+    d["deposit_h_relative_l1"] = obs.deposit_difference(s, s_ref)
+    return d
+
+
 def run_value(args, value, first_dir):
     work = os.path.join(args.work, args.label, str(value))
     cmd = command("suite", "--tier", args.tier, "--scenes", args.scene, "--work", work, "--np",
@@ -68,12 +84,13 @@ def run_value(args, value, first_dir):
 
 
 def collect(args):
-    rows = {}
+    rows, scenes = {}, {}
     for value in args.values:
         work = os.path.join(args.work, args.label, str(value))
         s = obs.Scene(work, args.scene)
         if not s.done:
             continue
+        scenes[str(value)] = s
         row = observables(s, TIMES)
         cost_file = os.path.join(work, "rusage.json")
         if os.path.exists(cost_file):
@@ -89,22 +106,21 @@ def collect(args):
     finest = str(args.values[-1])
     change = {}
     if finest in rows:
-        for value, row in rows.items():
-            if value == finest:
-                continue
-            d = {}
-            for t, o in row.items():
-                ref = rows[finest].get(t)
-                if not isinstance(o, dict) or not isinstance(ref, dict):
-                    continue
-                d[t] = {k: o[k] - ref[k] for k in o
-                        if isinstance(o.get(k), float) and isinstance(ref.get(k), float)}
-            change[value] = d
+        change = {value: difference(row, rows[finest], scenes[value], scenes[finest])
+                  for value, row in rows.items() if value != finest}
+    against = {}
+    if args.against:
+        base = obs.Scene(args.against, args.scene)
+        if base.done:
+            base_row = obs.clean(observables(base, TIMES))
+            against = {value: difference(row, base_row, scenes[value], base)
+                       for value, row in rows.items()}
     done = [str(v) for v in args.values if str(v) in rows]
     converged = (len(done) >= 2 and done[-1] == finest and within(rows[done[-2]], rows[finest]))
     return {"knob": args.knob, "set": args.set, "tier": args.tier, "end_s": args.end,
             "values": rows, "change_against_finest": change, "finest": finest,
-            "converged": converged}
+            "converged": converged,
+            **({"against": args.against, "change_against_base": against} if args.against else {})}
 
 
 def main(argv=None):
@@ -120,6 +136,9 @@ def main(argv=None):
     ap.add_argument("--work", default=os.path.join(ROOT, "runs", "convergence"))
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "convergence"))
     ap.add_argument("--settled-from", metavar="WORK", help="the settled sample of every value")
+    ap.add_argument("--against", metavar="WORK",
+                    help="also each value's change against this finished run of the scene "
+                    "(e.g. a noise-floor run against the run it perturbs)")
     ap.add_argument("--report-only", action="store_true")
     args = ap.parse_args(argv)
     args.values = [v.strip() for v in args.values.split(",") if v.strip()]

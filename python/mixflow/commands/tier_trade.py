@@ -58,6 +58,8 @@ def observables(s, times):
             o["E_fc"] = float(np.interp(t, *efc))
         if s.dem:
             o["granular_front_m"] = read(s.dem, "front_x_m", t)
+            # The body's front (where the deposit thins below d), blind to grains run ahead.
+            o["granular_thickness_front_m"] = read(s.dem, "front_thickness_x_m", t)
         if pe is not None:
             tt, ek, ep = pe
             o["particle_pe_released_J_per_m"] = float(ep[0] - np.interp(t, tt, ep))
