@@ -17,7 +17,7 @@
 #include "Dictionary.h"
 #include "ExtractSettings.h"
 #include "H5Output.h"
-#include "ParticleSnapshot.h"
+#include "SnapshotSeries.h"
 #include "Scene.h"
 #include "TextOutputs.h"
 #include "WindowResult.h"
