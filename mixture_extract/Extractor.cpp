@@ -17,8 +17,9 @@
 #include "Dictionary.h"
 #include "ExtractSettings.h"
 #include "H5Output.h"
-#include "SnapshotSeries.h"
+#include "H5WindowReader.h"
 #include "Scene.h"
+#include "SnapshotSeries.h"
 #include "TextOutputs.h"
 #include "WindowResult.h"
 
