@@ -1,6 +1,6 @@
 // Binary particle snapshots: LIGGGHTS `dump custom` with a .bin name, the layout and columns of
-// dem/SnapshotFiles.h. Same quantities as the VTK twin (ParticleSnapshot.h), at full precision,
-// read about as fast as the disk gives the bytes.
+// dem/SnapshotFiles.h. Same quantities as the VTK twin (VtkSnapshot.h), at full precision, read
+// about as fast as the disk gives the bytes.
 #pragma once
 
 #include <string>

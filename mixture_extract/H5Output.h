@@ -1,4 +1,4 @@
-// HDF5 output of the extractor: one file per case, appended window by window.
+// Writes the extractor's HDF5 file: one file per case, appended window by window.
 //   /                 root attributes: mixflow version, case parameters, settings, conventions
 //   /grid             x_edges, y_edges, z_edges, x, y (bin centres), bin_volume
 //   /windows          t0, t1, t_mid, snapshot and fluid times and counts, max_pair_gap,
@@ -14,8 +14,6 @@
 // process exits with its own status.
 #pragma once
 
-#include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -31,32 +29,6 @@ struct RootAttributes {
   std::vector<std::pair<std::string, std::string>> text;
   std::vector<std::pair<std::string, double>> numbers;
 };
-
-// What the XDMF and CSV writers need from a finished file.
-struct StoredOutput {
-  int nx = 0, ny = 0;
-  std::vector<double> t0, t1, tMid;
-  std::vector<long> snapshots, fluidTimes;
-  std::vector<std::string> fields;  // datasets in /fields
-  std::map<std::string, std::string> units;
-  struct RegionSeries {
-    std::string name;
-    std::vector<std::string> quantities;
-    std::map<std::string, std::vector<double>> values;
-    std::map<std::string, std::vector<std::uint8_t>> valid;
-    std::vector<std::uint16_t> reasons;
-    std::vector<double> particleSamples, fluidSamples;
-  };
-  std::vector<RegionSeries> regions;
-};
-StoredOutput readStoredOutput(const std::string& path);
-
-// The windows (t0, t1) of an existing output file, checked read-only against the settings before
-// anything is written: InputError (naming the file, the entry and the stored value) when the file
-// was made with other settings (fingerprint), another window kind, start or width, or holds a
-// window overlapping one of the settings' windows without matching it (two widths interleaved).
-std::vector<std::pair<double, double>> existingWindows(const std::string& path,
-                                                       const ExtractSettings& settings);
 
 class H5Output {
  public:

@@ -1,9 +1,8 @@
-// Particle snapshots written by mixflowDem (LIGGGHTS `dump custom/vtk`): legacy VTK 5.1 ASCII
-// POLYDATA files VTK/particles/particles_<step>.vtk and their ParaView index
-// VTK/particles.vtk.series; beside them, binary twins of the same columns (BinarySnapshot.h).
+// One particle snapshot as the extractor bins it, whichever file it came from (VtkSnapshot.h,
+// BinarySnapshot.h; SnapshotSeries.h picks the file).
 //
-// Arrays used (LIGGGHTS quantity in brackets):
-//   POINTS x, y, z [x y z]; id [id]; mass [mass]; radius [radius]; v [vx vy vz];
+// Quantities (LIGGGHTS quantity in brackets):
+//   x, y, z [x y z]; id [id]; mass [mass]; radius [radius]; v [vx vy vz];
 //   c_pstress[1-3], c_pstress[4-6] [compute stress/atom: xx yy zz, xy xz yz], units N m (stress x
 //   volume), LAMMPS sign: the NEGATIVE of the per-atom pressure tensor times volume,
 //   S_i = -(m v v + W_i) when the compute has the kinetic term (plain `compute ID all stress/atom`,
@@ -29,24 +28,6 @@ struct ParticleSnapshot {
   std::vector<long> id;                       // LIGGGHTS atom id (the contact dumps name these)
   size_t size() const { return x.size(); }
 };
-
-struct SnapshotEntry {
-  std::string file;  // absolute or case-relative path of the .vtk file (listed in the series)
-  double time = 0;
-};
-
-// Reads <caseDir>/VTK/particles.vtk.series. Throws InputError naming the file on any problem.
-std::vector<SnapshotEntry> readSnapshotSeries(const std::string& caseDir);
-
-// Reads one snapshot file. Throws InputError naming the file and the missing/broken array.
-ParticleSnapshot readParticleSnapshot(const std::string& path, double time);
-
-// The snapshot of an entry: its binary twin (BinarySnapshot.h) when the DEM wrote one, which is
-// faster to read and not rounded, else the .vtk file.
-ParticleSnapshot readSnapshot(const SnapshotEntry& e);
-
-// True when the entry's .vtk or its binary twin is a file.
-bool snapshotExists(const SnapshotEntry& e);
 
 // Throws InputError naming snap.file when a particle's radius or mass is not positive.
 void checkParticles(const ParticleSnapshot& snap);

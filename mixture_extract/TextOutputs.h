@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "H5Output.h"
+#include "H5WindowReader.h"
 
 namespace mixflow::mx {
 

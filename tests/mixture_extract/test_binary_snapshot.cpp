@@ -1,7 +1,7 @@
 // Binary snapshot reader (mixture_extract/BinarySnapshot.cpp) against files written here with the
-// layout of dem/SnapshotFiles.h: one and two rank chunks, the binary twin preferred over the .vtk,
-// and broken files (truncated, another column count, chunks against the header) refused with the
-// file named. Values are copied bytes, so they compare exactly.
+// layout of dem/SnapshotFiles.h: one and two rank chunks, the binary twin preferred over the .vtk
+// (SnapshotSeries.cpp), and broken files (truncated, another column count, chunks against the
+// header) refused with the file named. Values are copied bytes, so they compare exactly.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include "BinarySnapshot.h"
 #include "Dictionary.h"
 #include "SnapshotFiles.h"
+#include "SnapshotSeries.h"
 
 using namespace mixflow::mx;
 using namespace mixflow::dem;
