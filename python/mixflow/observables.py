@@ -280,6 +280,23 @@ def runout_law(scenes):
 
 # Writing them
 
+def solver_cpu(s):
+    """CPU seconds of the scene's solver process: the last `ExecutionTime` in log.mixflowCoupled,
+    log.mixflowDem or log.mixflowFoam (a resumed run's last attempt); None without a log."""
+    for name in ("log.mixflowCoupled", "log.mixflowDem", "log.mixflowFoam"):
+        path = os.path.join(s.dir, name)
+        if not os.path.isfile(path):
+            continue
+        last = None
+        with open(path, errors="replace") as f:
+            for line in f:
+                if line.startswith("ExecutionTime = "):
+                    last = line
+        if last:
+            return float(last.split()[2])
+    return None
+
+
 def deposit_difference(s, ref):
     """Relative L1 difference of two scenes' end profiles h(x) (depositProfile.csv, volume
     depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles."""

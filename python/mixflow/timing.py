@@ -23,15 +23,16 @@ def timed(cmd, cwd, with_output=False):
     return (wall, cpu, res.stdout) if with_output else (wall, cpu)
 
 
-def recorded_run(cmd, work, cwd=None, stdout=None):
-    """Runs cmd (its exit status returned) and adds its cost to WORK/rusage.json, accumulated over
+def recorded_run(cmd, work, cwd=None, stdout=None, name="rusage.json"):
+    """Runs cmd (its exit status returned) and adds its cost to WORK/NAME, accumulated over
     attempts: cpu_s (user_s + sys_s of the command and its descendants), wall_s, attempts, and
-    the last attempt's cmd and rc. A study's run that resumes keeps counting what it spent."""
+    the last attempt's cmd and rc. A study's run that resumes keeps counting what it spent; runs
+    of different scenes in one WORK need a NAME each."""
     r0, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.time()
     rc = subprocess.call(cmd, cwd=cwd, stdout=stdout, stderr=subprocess.STDOUT if stdout else None)
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "rusage.json")
+    path = os.path.join(work, name)
     rec = {"cpu_s": 0.0, "user_s": 0.0, "sys_s": 0.0, "wall_s": 0.0, "attempts": 0}
     if os.path.isfile(path):
         with open(path) as f:

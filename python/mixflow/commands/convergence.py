@@ -12,7 +12,9 @@ others starting from its sample (--settled-from; with --settled-from WORK every 
 from WORK's sample, e.g. another ladder's first value), so only the knob differs. A value whose run
 finished is not rerun (the ladder resumes). The observables at 0.25, 0.5, 1, 2, 3 s (those the
 runs reach: fronts, the grains' released potential energy, the liquid front, the back-wall
-height; scripts/tier_trade.py) and the CPU seconds of each run go to OUT/summary.json under
+height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the suite command with
+its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver process's last
+ExecutionTime) go to OUT/summary.json under
 ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
 listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
@@ -70,6 +72,23 @@ def difference(row, ref, s, s_ref):
     return d
 
 
+def cost_file_name(scene):
+    return f"rusage.{scene}.json"
+
+
+def scene_cost_file(work, scene=None):
+    """The file with the CPU of SCENE's run in WORK: its own, or WORK/rusage.json where WORK holds
+    that scene alone (a shared one sums the scenes run there); None otherwise."""
+    if scene:
+        own = os.path.join(work, cost_file_name(scene))
+        if os.path.isfile(own):
+            return own
+    shared = os.path.join(work, "rusage.json")
+    scenes = [d for d in os.listdir(work) if os.path.isfile(os.path.join(work, d, ".done"))] \
+        if os.path.isdir(work) else []
+    return shared if os.path.isfile(shared) and len(scenes) == 1 else None
+
+
 def run_value(args, value, first_dir):
     work = os.path.join(args.work, args.label, str(value))
     cmd = command("suite", "--tier", args.tier, "--scenes", args.scene, "--work", work, "--np",
@@ -80,7 +99,7 @@ def run_value(args, value, first_dir):
     if first_dir and first_dir != work:
         cmd += ["--settled-from", first_dir]
     print("+", " ".join(cmd), flush=True)
-    return recorded_run(cmd, work), work
+    return recorded_run(cmd, work, name=cost_file_name(args.scene)), work
 
 
 def collect(args):
@@ -92,10 +111,11 @@ def collect(args):
             continue
         scenes[str(value)] = s
         row = observables(s, TIMES)
-        cost_file = os.path.join(work, "rusage.json")
-        if os.path.exists(cost_file):
+        cost_file = scene_cost_file(work, args.scene)
+        if cost_file:
             with open(cost_file) as f:
                 row["cpu_s"] = json.load(f)["cpu_s"]
+        row["solver_cpu_s"] = obs.solver_cpu(s)
         dem_summary = os.path.join(s.dir, "postProcessing", "dem", "summary.json")
         if os.path.exists(dem_summary):
             with open(dem_summary) as f:
