@@ -108,6 +108,24 @@ def liquid_front(s):
     return (col(s.liquid, "time_s"), col(s.liquid, "front_bed_m")) if s.liquid else None
 
 
+def liquid_depth_front(s, t, depth=0.5 * D_P):
+    """Largest x where the liquid's volume depth (profiles.csv depth_m) falls through DEPTH,
+    interpolated between columns, at the profile write nearest t (within 0.02 s; None otherwise).
+    Unlike front_bed_m (the bed cell row at alpha >= 0.5, half a cell deep) its threshold is a
+    physical depth, the same on every mesh."""
+    if not s.profiles:
+        return None
+    times = sorted({r["time_s"] for r in s.profiles}, key=lambda x: abs(x - t))
+    if not times or abs(times[0] - t) > 0.02:
+        return None
+    pts = sorted((r["x_m"], r["depth_m"]) for r in s.profiles if r["time_s"] == times[0])
+    front = None
+    for (x0, h0), (x1, h1) in zip(pts, pts[1:]):
+        if h0 >= depth > h1:
+            front = x0 + (h0 - depth) / (h0 - h1) * (x1 - x0)
+    return front
+
+
 def granular_front(s):
     return (col(s.dem, "time_s"), col(s.dem, "front_x_m")) if s.dem else None
 

@@ -53,6 +53,7 @@ def observables(s, times):
         o = {}
         if s.liquid:
             o["liquid_front_m"] = read(s.liquid, "front_bed_m", t)
+            o["liquid_depth_front_m"] = obs.liquid_depth_front(s, t)
             o["back_wall_height_over_H"] = obs.back_wall(s, t)
         if efc is not None:
             o["E_fc"] = float(np.interp(t, *efc))
