@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -169,12 +169,19 @@ Dictionary Dictionary::parse(const std::string& text, const std::string& fileNam
   return d;
 }
 
+// The whole file in one read (particle snapshots of many MB are parsed from memory too).
 std::string readTextFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open file (missing or unreadable)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
+  std::string s;
+  std::fseek(f, 0, SEEK_END);
+  const long n = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
+  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
+  std::fclose(f);
+  if (got != s.size()) throw InputError(path + ": read error");
+  return s;
 }
 
 Dictionary Dictionary::readFile(const std::string& path) { return parse(readTextFile(path), path); }

@@ -81,11 +81,7 @@ ParticleSnapshot readBinarySnapshot(const std::string& path, double time) {
     in.fail("the header says " + std::to_string(natoms) + " particles, the file holds " +
             std::to_string(in.size()) + " bytes (truncated snapshot?)");
   const size_t n = static_cast<size_t>(natoms);
-  for (auto* a :
-       {&snap.x, &snap.y, &snap.z, &snap.vx, &snap.vy, &snap.vz, &snap.mass, &snap.radius})
-    a->resize(n);
-  snap.stress.resize(n);
-  snap.id.resize(n);
+  snap.resize(n);
   std::vector<double> block(kBlockRows * kSnapshotColumnCount);
   size_t i = 0;
   for (int32_t k = 0; k < chunks; ++k) {

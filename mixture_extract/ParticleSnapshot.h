@@ -27,6 +27,7 @@ struct ParticleSnapshot {
   std::vector<std::array<double, 6>> stress;  // c_pstress: xx yy zz xy xz yz (N m, LAMMPS sign)
   std::vector<long> id;                       // LIGGGHTS atom id (the contact dumps name these)
   size_t size() const { return x.size(); }
+  void resize(size_t n);  // every per-particle array to n entries
 };
 
 // Throws InputError naming snap.file when a particle's radius or mass is not positive.

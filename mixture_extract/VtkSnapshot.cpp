@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <string_view>
 
 #include "Dictionary.h"
@@ -10,21 +9,6 @@
 namespace mixflow::mx {
 
 namespace {
-
-// The whole file in one read: a snapshot is parsed from memory.
-std::string slurp(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path + ": cannot open file (missing or unreadable)");
-  std::string s;
-  std::fseek(f, 0, SEEK_END);
-  const long n = std::ftell(f);
-  std::fseek(f, 0, SEEK_SET);
-  s.resize(n > 0 ? static_cast<size_t>(n) : 0);
-  const size_t got = n > 0 ? std::fread(s.data(), 1, s.size(), f) : 0;
-  std::fclose(f);
-  if (got != s.size()) throw InputError(path + ": read error");
-  return s;
-}
 
 // Whitespace tokenizer over the whole file (legacy VTK ASCII is whitespace separated).
 class Scanner {
@@ -99,7 +83,7 @@ class Scanner {
 }  // namespace
 
 ParticleSnapshot readVtkSnapshot(const std::string& path, double time) {
-  const std::string text = slurp(path);
+  const std::string text = readTextFile(path);
   Scanner sc(text, path);
   ParticleSnapshot snap;
   snap.time = time;
@@ -111,9 +95,7 @@ ParticleSnapshot readVtkSnapshot(const std::string& path, double time) {
   const long n = sc.integer("POINTS count");
   if (n < 0) sc.fail("negative POINTS count");
   sc.token();  // float | double
-  snap.x.resize(n);
-  snap.y.resize(n);
-  snap.z.resize(n);
+  snap.resize(static_cast<size_t>(n));
   for (long i = 0; i < n; ++i) {
     snap.x[i] = sc.number("POINTS");
     snap.y[i] = sc.number("POINTS");
@@ -127,13 +109,6 @@ ParticleSnapshot readVtkSnapshot(const std::string& path, double time) {
   const long arrays = sc.integer("FIELD array count");
 
   bool haveMass = false, haveRadius = false, haveV = false, haveS1 = false, haveS2 = false;
-  snap.mass.resize(n);
-  snap.radius.resize(n);
-  snap.vx.resize(n);
-  snap.vy.resize(n);
-  snap.vz.resize(n);
-  snap.stress.resize(n);
-  snap.id.resize(n);
   for (long a = 0; a < arrays; ++a) {
     const std::string name(sc.token());
     if (name.empty()) sc.fail("file ends before all " + std::to_string(arrays) + " arrays");
