@@ -126,6 +126,34 @@ def liquid_depth_front(s, t, depth=0.5 * D_P):
     return front
 
 
+def solver_cpu(s):
+    """CPU seconds of the scene's solver process: the last `ExecutionTime` in log.mixflowCoupled,
+    log.mixflowDem or log.mixflowFoam (a resumed run's last attempt); None without a log."""
+    for name in ("log.mixflowCoupled", "log.mixflowDem", "log.mixflowFoam"):
+        path = os.path.join(s.dir, name)
+        if not os.path.isfile(path):
+            continue
+        last = None
+        with open(path, errors="replace") as f:
+            for line in f:
+                if line.startswith("ExecutionTime = "):
+                    last = line
+        if last:
+            return float(last.split()[2])
+    return None
+
+
+def deposit_difference(s, ref):
+    """Relative L1 difference of two scenes' end profiles h(x) (depositProfile.csv, volume
+    depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles."""
+    if not s.deposit or not ref.deposit:
+        return None
+    h, h_ref = col(s.deposit, "h_volume_m"), col(ref.deposit, "h_volume_m")
+    n = min(len(h), len(h_ref))
+    total = float(np.nansum(h_ref[:n]))
+    return float(np.nansum(np.abs(h[:n] - h_ref[:n])) / total) if total > 0 else None
+
+
 def granular_front(s):
     return (col(s.dem, "time_s"), col(s.dem, "front_x_m")) if s.dem else None
 
@@ -297,34 +325,6 @@ def runout_law(scenes):
 
 
 # Writing them
-
-def solver_cpu(s):
-    """CPU seconds of the scene's solver process: the last `ExecutionTime` in log.mixflowCoupled,
-    log.mixflowDem or log.mixflowFoam (a resumed run's last attempt); None without a log."""
-    for name in ("log.mixflowCoupled", "log.mixflowDem", "log.mixflowFoam"):
-        path = os.path.join(s.dir, name)
-        if not os.path.isfile(path):
-            continue
-        last = None
-        with open(path, errors="replace") as f:
-            for line in f:
-                if line.startswith("ExecutionTime = "):
-                    last = line
-        if last:
-            return float(last.split()[2])
-    return None
-
-
-def deposit_difference(s, ref):
-    """Relative L1 difference of two scenes' end profiles h(x) (depositProfile.csv, volume
-    depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles."""
-    if not s.deposit or not ref.deposit:
-        return None
-    h, h_ref = col(s.deposit, "h_volume_m"), col(ref.deposit, "h_volume_m")
-    n = min(len(h), len(h_ref))
-    total = float(np.nansum(h_ref[:n]))
-    return float(np.nansum(np.abs(h[:n] - h_ref[:n])) / total) if total > 0 else None
-
 
 def fmt(v, nd=3):
     """Our numbers: NA as '-', floats to ND significant digits."""

@@ -11,18 +11,18 @@ Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALU
 others starting from its sample (--settled-from; with --settled-from WORK every value starts
 from WORK's sample, e.g. another ladder's first value), so only the knob differs. A value whose run
 finished is not rerun (the ladder resumes). The observables at 0.25, 0.5, 1, 2, 3 s (those the
-runs reach: fronts, the grains' released potential energy, the liquid front, the back-wall
-height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the suite command with
-its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver process's last
-ExecutionTime) go to OUT/summary.json under
-ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
-listed) under ladders.LABEL.SCENE.change. A ladder has converged when its second-finest value is
+runs reach: fronts, the grains' released potential energy, the liquid front (also at depth
+d/2), the back-wall height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the
+suite command with its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver
+process's last ExecutionTime) go to OUT/summary.json under ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
+listed) under ladders.LABEL.SCENE.change_against_finest. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
 both reach (ladders.LABEL.SCENE.converged); beside them, the end's deposit profile h(x) against
-the finest's (relative L1, change.VALUE.deposit_h_relative_l1) and the body's front
+the finest's (relative L1, change_against_finest.VALUE.deposit_h_relative_l1) and the body's front
 (granular_thickness_front_m, where the deposit thins below d); with --against WORK each value's
-change against that run (change_against_base: a noise-floor run against the run it perturbs); converged.SCENE is true once every ladder of the
-scene has (a one-value ladder, a noise-floor run, is none), and truth_tier stays null until then; packing lists each ladder's sample solid
+change against that run (change_against_base: a noise-floor run against the run it perturbs).
+converged.SCENE is true once every ladder of the scene has (a one-value ladder, a noise-floor
+run, is none), and truth_tier stays null until then; packing lists each ladder's sample solid
 fraction against the target. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
 run_settled_bed.py --json) are gathered into static_bed.
 """
@@ -76,13 +76,12 @@ def cost_file_name(scene):
     return f"rusage.{scene}.json"
 
 
-def scene_cost_file(work, scene=None):
+def scene_cost_file(work, scene):
     """The file with the CPU of SCENE's run in WORK: its own, or WORK/rusage.json where WORK holds
     that scene alone (a shared one sums the scenes run there); None otherwise."""
-    if scene:
-        own = os.path.join(work, cost_file_name(scene))
-        if os.path.isfile(own):
-            return own
+    own = os.path.join(work, cost_file_name(scene))
+    if os.path.isfile(own):
+        return own
     shared = os.path.join(work, "rusage.json")
     scenes = [d for d in os.listdir(work) if os.path.isfile(os.path.join(work, d, ".done"))] \
         if os.path.isdir(work) else []
