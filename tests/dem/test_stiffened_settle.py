@@ -17,8 +17,8 @@ Checks, each with its tolerance and reason:
      fraction within 1.5 % (measured at most 0.7 %; spread 2 %), bulk fraction within 2.5 %
      (at most 1.5 %), coordination number within 0.2 (at most 0.075), mean normal contact force
      over m g within 20 % (at most 13 %; spread 9.5 %), bottom load within 0.2 of the weight (at
-     most 0.11: wall friction holds part of the column's swelling as the overlaps shrink);
-  3. the stiffened settle costs less than half the CPU of the full one (measured 2.7-3.6x less).
+     most 0.11: wall friction holds part of the column's swelling as the overlaps shrink).
+The cost of each settle is measured by bench/stiffened_settle.py, not here.
 """
 import json
 import os
@@ -44,14 +44,10 @@ def settle(name, stiffen):
     if stiffen:
         foamdict.edit_file(os.path.join(case, "system", "demDict"),
                            {"settle": {"stiffenFrom": "1e-2"}})
-    before = os.times()
     r = subprocess.run([exe, "-case", case], capture_output=True, text=True)
-    after = os.times()
     if r.returncode != 0:
         sys.exit(f"mixflowDem failed on {case}:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
     stats = contacts.settled_stats(case)
-    stats["cpu_s"] = (after.children_user - before.children_user +
-                      after.children_system - before.children_system)
     print(name, json.dumps(stats))
     return stats
 
@@ -76,7 +72,5 @@ dz = stiff["coordination_pairs"] - full["coordination_pairs"]
 check(abs(dz) < 0.2, f"coordination number {stiff['coordination_pairs']:.3f} against {full['coordination_pairs']:.3f} (within 0.2)")
 db = stiff["bottom_load_over_weight"] - full["bottom_load_over_weight"]
 check(abs(db) < 0.2, f"bottom load / weight {stiff['bottom_load_over_weight']:.3f} against {full['bottom_load_over_weight']:.3f} (within 0.2)")
-check(stiff["cpu_s"] < 0.5 * full["cpu_s"],
-      f"CPU stiffened {stiff['cpu_s']:.1f} s < half of full {full['cpu_s']:.1f} s")
 print(f"{len(failures)} failed" if failures else "all passed")
 sys.exit(1 if failures else 0)

@@ -3,7 +3,7 @@
 `mixflowPrepare -check` (and `mixflowDem -check` for the DEM half).
 
 For copies of the committed cases (W+P-quick: mixture, P-quick: dry, W: liquid), inputs only:
-  - the valid mixture passes `mixflowPrepare -check` in seconds without its settled sample (the
+  - the valid mixture passes `mixflowPrepare -check` without its settled sample (the
     nominal sample height and packing), says which checks wait for the sample, and writes
     nothing: no dem/ directory, no file changed or added; a stale sample in dem/ (settled from
     other inputs) does not matter to it; the valid dry and liquid cases pass too;
@@ -30,7 +30,6 @@ import os
 import re
 import subprocess
 import sys
-import time
 
 import inputcase  # beside this script
 from inputcase import check, edit, last_line, tree
@@ -43,9 +42,8 @@ def copy(name, dest):
 
 
 def run(exe, case):
-    t0 = time.monotonic()
     r = subprocess.run([exe, "-case", case, "-check"], capture_output=True, text=True, timeout=60)
-    return r.returncode, r.stdout + r.stderr, time.monotonic() - t0
+    return r.returncode, r.stdout + r.stderr
 
 
 os.makedirs(work, exist_ok=True)
@@ -53,9 +51,8 @@ os.makedirs(work, exist_ok=True)
 # The valid cases.
 case = copy("W+P-quick", "valid-mixture")
 before = tree(case)
-rc, msg, wall = run(prepare_exe, case)
-check(rc == 0 and wall < 5, f"W+P-quick passes mixflowPrepare -check without a settled sample "
-                            f"(exit {rc}, {wall:.2f} s)")
+rc, msg = run(prepare_exe, case)
+check(rc == 0, f"W+P-quick passes mixflowPrepare -check without a settled sample (exit {rc})")
 check("checked without the settled sample" in msg and "nominal sample height" in msg,
       "it says it used the nominal sample and which checks wait for the settled one")
 check(not os.path.exists(os.path.join(case, "dem")), "no dem/ directory is created")
@@ -65,12 +62,12 @@ os.makedirs(os.path.join(case, "dem"))
 with open(os.path.join(case, "dem", "settled.state"), "w") as f:
     f.write('settled { fingerprint "0"; particles 10; height 5; }\n')
 before = tree(case)
-rc, msg, _ = run(prepare_exe, case)
+rc, msg = run(prepare_exe, case)
 check(rc == 0 and tree(case) == before, f"a stale dem/settled.state does not affect -check (exit {rc})")
 for name, kind in (("P-quick", "dry"), ("W", "liquid"), ("P-bulk", "bulk model, air as the pore fluid")):
     case = copy(name, f"valid-{kind}")
     before = tree(case)
-    rc, msg, _ = run(prepare_exe, case)
+    rc, msg = run(prepare_exe, case)
     check(rc == 0 and tree(case) == before,
           f"{name} ({kind}) passes mixflowPrepare -check, writing nothing (exit {rc}): {last_line(msg)}")
 
@@ -156,7 +153,7 @@ for what, name, exe, rel, pattern, repl, want, fragments in CASES:
     case = copy(name, re.sub(r"\W+", "_", what))
     edit(case, rel, pattern, repl)
     before = tree(case)
-    rc, msg, _ = run(exe, case)
+    rc, msg = run(exe, case)
     missing = [f for f in fragments if f not in msg]
     if "sample.width" in fragments and "sample.length" in msg:
         missing.append("(names sample.length)")
