@@ -127,19 +127,23 @@ def liquid_depth_front(s, t, depth=0.5 * D_P):
 
 
 def solver_cpu(s):
-    """CPU seconds of the scene's solver process: the last `ExecutionTime` in log.mixflowCoupled,
-    log.mixflowDem or log.mixflowFoam (a resumed run's last attempt); None without a log."""
+    """CPU seconds of the scene's solver process: the `ExecutionTime` lines of log.mixflowCoupled,
+    log.mixflowDem or log.mixflowFoam, summed over the attempts a resumed run appended (each
+    counts from zero); None without a log."""
     for name in ("log.mixflowCoupled", "log.mixflowDem", "log.mixflowFoam"):
         path = os.path.join(s.dir, name)
         if not os.path.isfile(path):
             continue
-        last = None
+        total, last, seen = 0.0, 0.0, False
         with open(path, errors="replace") as f:
             for line in f:
                 if line.startswith("ExecutionTime = "):
-                    last = line
-        if last:
-            return float(last.split()[2])
+                    t = float(line.split()[2])
+                    if t < last:  # a resumed attempt starts counting again
+                        total += last
+                    last, seen = t, True
+        if seen:
+            return total + last
     return None
 
 

@@ -16,8 +16,11 @@ Checks, each exact:
      what docs/suite.md says for P, W and HB-I;
   4. `suite.py --tier quick --scenes P-I-I --dry-run` prints the plan and writes nothing;
   5. settled samples: --settled-from and a rerun's own fingerprinted sample are reused by mixture
-     scenes only, a missing one refused; a mixture copy with a coupled resume state resumes;
-  6. the resume helpers: the last time of a CSV, cutting a liquid time series after a restart
+     scenes only, a missing one refused; a mixture copy with a coupled resume state resumes; a
+     finished run asked for a later endTime by --set (the only difference) is extended and
+     resumes, an earlier endTime or another --set difference is refused;
+  6. the resume helpers: the last time of a CSV, a resumed run's solver CPU summed over its
+     attempts, cutting a liquid time series after a restart
      time, the liquid restart time found from written time directories.
 """
 import os
@@ -284,12 +287,50 @@ open(os.path.join(own, "HB+P", "dem", "coupled.resume.state"), "w").close()
 p = suite.plan_scene("HB+P", own, suite.Tier("quick"), 1)
 check(p["status"] == "resume" and "resumeMixtureCase" in " ".join(suite.resume_command("mixture", 1)),
       "a mixture copy with dem/coupled.resume.state resumes (resumeMixtureCase)")
+# A run goes on to a later endTime asked by --set (the only difference): its copy is extended
+# and resumed; an earlier endTime or any other difference is refused.
+open(os.path.join(own, "HB+P", ".done"), "w").close()
+end0 = suite.end_time(os.path.join(own, "HB+P"))
+later = suite.Tier("quick")
+later.set_entries([f"controlDict.endTime={2 * end0:g}"])
+p = suite.plan_scene("HB+P", own, later, 1)
+check(p["status"] == "resume" and p.get("extend_to") == 2 * end0 and "endTime ->" in p["command"],
+      f"a finished run asked for endTime {2 * end0:g} s (was {end0:g}) resumes to it")
+same = suite.Tier("quick")
+same.set_entries([f"controlDict.endTime={end0:g}"])
+check(suite.plan_scene("HB+P", own, same, 1)["status"] == "done", "the same endTime by --set is done")
+for sets, what in (([f"controlDict.endTime={0.5 * end0:g}"], "would shorten"),
+                   ([f"controlDict.endTime={2 * end0:g}", "couplingProperties.exchangeEvery=3"],
+                    "was made with --set")):
+    t = suite.Tier("quick")
+    t.set_entries(sets)
+    p = suite.plan_scene("HB+P", own, t, 1)
+    check(p["status"] == "error" and what in p["error"], f"--set {' '.join(sets)} refused ({what})")
+suite.extend_run(os.path.join(own, "HB+P"), later, 2 * end0)
+rec = foamdict.read_dict(os.path.join(own, "HB+P", "system", "tier"))
+check(suite.end_time(os.path.join(own, "HB+P")) == 2 * end0
+      and foamdict.unquote(rec["set"]) == later.set_text
+      and float(rec["overrides"]["system/controlDict"]["endTime"]) == 2 * end0
+      and not os.path.exists(os.path.join(own, "HB+P", ".done")),
+      "the extended copy's controlDict and system/tier carry the new endTime, .done is gone")
+p = suite.plan_scene("HB+P", own, later, 1)
+check(p["status"] == "resume" and "extend_to" not in p, "the extended copy then resumes as any other")
 
 # 6. Resume helpers.
 csvp = os.path.join(work, "ts.csv")
 with open(csvp, "w") as f:
     f.write("time_s,x\n0,1\n0.1,2\n0.2,3\n0.30000001,4\n")
 check(suite.last_time(csvp) == 0.30000001, "last time of a CSV")
+# A resumed run's solver CPU: each attempt appends its own ExecutionTime count from zero.
+from types import SimpleNamespace  # noqa: E402
+from mixflow import observables  # noqa: E402
+cpu_dir = os.path.join(work, "cpu")
+os.makedirs(cpu_dir, exist_ok=True)
+with open(os.path.join(cpu_dir, "log.mixflowCoupled"), "w") as f:
+    f.write("ExecutionTime = 10 s  ClockTime = 11 s\nExecutionTime = 250.5 s  ClockTime = 260 s\n"
+            "resume\nExecutionTime = 3 s  ClockTime = 3 s\nExecutionTime = 100 s  ClockTime = 101 s\n")
+check(observables.solver_cpu(SimpleNamespace(dir=cpu_dir)) == 350.5,
+      "solver CPU sums a resumed run's attempts (250.5 + 100 s)")
 liq = os.path.join(work, "liq")
 for t in ("0", "0.1", "0.2"):
     os.makedirs(os.path.join(liq, t, "uniform", "functionObjects"))

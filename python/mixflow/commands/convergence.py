@@ -10,7 +10,7 @@ Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALU
 --set KNOB=VALUE --set controlDict.endTime=END`, the first value settling the grains and the
 others starting from its sample (--settled-from; with --settled-from WORK every value starts
 from WORK's sample, e.g. another ladder's first value), so only the knob differs. A value whose run
-finished is not rerun (the ladder resumes). The observables at 0.25, 0.5, 1, 2, 3 s (those the
+finished is not rerun (the ladder resumes); a later --end takes the finished runs on to it. The observables at 0.25, 0.5, 1, 2, 3 s (those the
 runs reach: fronts, the grains' released potential energy, the liquid front (also at depth
 d/2), the back-wall height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the
 suite command with its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver

@@ -6,7 +6,8 @@ usage: suite.py --tier quick|reference|paper|FILE [--np N] [--scenes P,W,HB+P,..
 For each scene: cases/<scene> is copied to WORK/<scene> (once), the tier's overrides
 (cases/tiers/<tier>) are set in the copy's files and recorded in WORK/<scene>/system/tier, then
 `./Allrun N` runs it (PATH gets the build's bin/: $MIXFLOW_BUILD or build/). A finished scene gets
-WORK/<scene>/.done and is skipped next time; an interrupted dry scene continues with
+WORK/<scene>/.done and is skipped next time, unless a later `--set controlDict.endTime` takes it on
+to that time; an interrupted dry scene continues with
 `mixflowDem -resume`, an interrupted liquid one from its latest complete field write
 (resumeLiquidCase), an interrupted mixture one from its last field write (resumeMixtureCase), or,
 stopped before one, again from its start with its own settled sample. Progress lines: scene i/n,
@@ -30,7 +31,7 @@ import time
 
 from mixflow import ROOT, outputs, schema
 from mixflow.foamcase import run_env
-from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, format_dict,  # noqa: F401
+from mixflow.foamdict import (DictError, add_missing_blocks, edit_dict, edit_file, format_dict,  # noqa: F401
                               leaves, list_value, parse_dict, read_dict, unquote)
 from mixflow.paper import TABLE1
 
@@ -311,13 +312,43 @@ def plan_scene(scene, work, tier, ranks, settled_from=None):
     return p
 
 
+def _split_end(set_text):
+    """(the --set items other than controlDict.endTime, its value or None)."""
+    items, end = [], None
+    for item in set_text.split():
+        key, _, value = item.partition("=")
+        if key == "controlDict.endTime":
+            end = value
+        else:
+            items.append(item)
+    return items, end
+
+
+def later_end(run_dir, recorded_set, tier):
+    """The later endTime asked of RUN_DIR when the --set values differ from those it was made
+    with only in controlDict.endTime (a finished or stopped run then goes on to it); None when
+    they are the same. Another difference, or an earlier endTime, is an error."""
+    if recorded_set == tier.set_text:
+        return None
+    (was, _), (now, end) = _split_end(recorded_set), _split_end(tier.set_text)
+    mismatch = DictError(f"{run_dir} was made with --set '{recorded_set}', not '{tier.set_text}': "
+                         "choose another --work")
+    if was != now or end is None:
+        raise mismatch
+    try:
+        new, current = float(end), end_time(run_dir)
+    except (ValueError, KeyError) as e:
+        raise DictError(f"--set controlDict.endTime={end}: {e}")
+    if new < current:
+        raise DictError(f"{run_dir} runs to endTime {current:g} s: --set controlDict.endTime={end} "
+                        "would shorten it (a run only goes on to a later time): choose another --work")
+    return new if new > current else None
+
+
 def _plan_scene(scene, work, tier, ranks):
     src = os.path.join(CASES, scene)
     run_dir = os.path.join(work, scene)
     p = {"scene": scene, "case": src, "run_dir": run_dir}
-    if os.path.isfile(os.path.join(run_dir, outputs.DONE)):
-        p["status"] = "done"
-        return p
     if not os.path.isdir(src) and not os.path.isdir(run_dir):
         p["status"] = "missing"
         return p
@@ -330,9 +361,12 @@ def _plan_scene(scene, work, tier, ranks):
             if rec.get("tier") != tier.name:
                 raise DictError(f"{run_dir} was made with tier '{rec.get('tier')}', not "
                                 f"'{tier.name}': choose another --work")
-            if unquote(rec.get("set", "")) != tier.set_text:
-                raise DictError(f"{run_dir} was made with --set '{unquote(rec.get('set', ''))}', not "
-                                f"'{tier.set_text}': choose another --work")
+            extend_to = later_end(run_dir, unquote(rec.get("set", "")), tier)
+            if extend_to is None and os.path.isfile(os.path.join(run_dir, outputs.DONE)):
+                p["status"] = "done"
+                return p
+            if extend_to is not None:
+                p["extend_to"] = extend_to
             p["content"] = rec["content"]
             p["texts"], p["records"] = {}, []
             if p["content"] == "particles" and os.path.isfile(os.path.join(run_dir, "dem", "resume.state")):
@@ -346,6 +380,8 @@ def _plan_scene(scene, work, tier, ranks):
                 p["command"] = f"mixflowFoam from t = {p['restart_time']} s ({ranks} ranks)"
             else:
                 p["status"], p["command"] = "restart", f"./Allrun {ranks}"
+            if extend_to is not None:
+                p["command"] = f"endTime -> {extend_to:g} s, then {p['command']}"
         else:
             p["content"] = scene_content(src)
             p["texts"], p["records"] = tier_edits(src, tier, scene)
@@ -430,9 +466,22 @@ def tag_summaries(run_dir, tier_name):
                 f.write("\n")
 
 
+def extend_run(run_dir, tier, end):
+    """A run copy goes on to a later endTime: its controlDict and its system/tier record (the
+    --set values and the controlDict override) take the new one, and .done goes."""
+    edit_file(os.path.join(run_dir, FILES["controlDict"]), {"endTime": f"{end:g}"}, note="set")
+    edit_file(os.path.join(run_dir, "system", "tier"),
+              {"set": f'"{tier.set_text}"',
+               "overrides": {FILES["controlDict"]: {"endTime": f"{end:g}"}}}, create_blocks=True)
+    if os.path.exists(os.path.join(run_dir, outputs.DONE)):
+        os.remove(os.path.join(run_dir, outputs.DONE))
+
+
 def run_scene(p, tier, ranks, label, progress_every, samples=None, poll=1.0):
     if p["status"] == "fresh":
         make_copy(p["scene"], p["run_dir"], tier, p["texts"], p["records"], p["content"])
+    if p.get("extend_to") is not None:
+        extend_run(p["run_dir"], tier, p["extend_to"])
     for name in (".failed",):
         if os.path.exists(os.path.join(p["run_dir"], name)):
             os.remove(os.path.join(p["run_dir"], name))
