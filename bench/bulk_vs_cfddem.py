@@ -78,7 +78,7 @@ def run(label, scene, tier, work, sets):
     rec = {"label": label, "scene": scene, "tier": tier, "set": sets, "solver": solver,
            "suite_wall_s": wall,
            "solver_cpu_s": collapse_cpu(dem_log) if solver == "mixflowDem" else
-           foamcase.last_execution_time(os.path.join(case, f"log.{solver}"))}
+           foamcase.execution_time(os.path.join(case, f"log.{solver}"))}
     rec["settle_wall_s"] = settle_wall(dem_log) if os.path.isfile(dem_log) else None
     rec["simulated_s"], rec["granular_front_m"] = end_state(case)
     print(json.dumps(rec), flush=True)

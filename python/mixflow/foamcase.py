@@ -123,10 +123,32 @@ def last_match(log, pattern):
     return last
 
 
-def last_execution_time(log):
-    """The last 'ExecutionTime = X s' of an OpenFOAM solver log (CPU seconds), or None."""
-    m = last_match(log, r"ExecutionTime = ([0-9.eE+-]+) s")
-    return float(m.group(1)) if m else None
+def execution_times(log):
+    """{"cpu_s", "clock_s"} of an OpenFOAM solver log ('ExecutionTime = X s  ClockTime = Y s'),
+    summed over the attempts a resumed run appended to it (each counts from zero); None without
+    such a line or log."""
+    total, last, seen = [0.0, 0.0], [0.0, 0.0], False
+    try:
+        with open(log, errors="replace") as f:
+            for line in f:
+                m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s", line)
+                if not m:
+                    continue
+                t = [float(m.group(1)), float(m.group(2))]
+                if t[0] < last[0]:  # a resumed attempt starts counting again
+                    total = [a + b for a, b in zip(total, last)]
+                last, seen = t, True
+    except OSError:
+        return None
+    if not seen:
+        return None
+    return {"cpu_s": total[0] + last[0], "clock_s": total[1] + last[1]}
+
+
+def execution_time(log):
+    """CPU seconds of an OpenFOAM solver log (execution_times), or None."""
+    t = execution_times(log)
+    return t["cpu_s"] if t else None
 
 
 def latest_time(case):

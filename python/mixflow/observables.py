@@ -10,6 +10,7 @@ import os
 
 import numpy as np
 
+from .foamcase import execution_times
 from .foamdict import read_dict
 from .froude import first_time, subcritical_after_arrival
 from .outputs import interpolated as at, read_rows
@@ -126,25 +127,37 @@ def liquid_depth_front(s, t, depth=0.5 * D_P):
     return front
 
 
-def solver_cpu(s):
-    """CPU seconds of the scene's solver process: the `ExecutionTime` lines of log.mixflowCoupled,
-    log.mixflowDem or log.mixflowFoam, summed over the attempts a resumed run appended (each
-    counts from zero); None without a log."""
+def solver_log(s):
+    """The scene's solver log: log.mixflowCoupled, log.mixflowDem or log.mixflowFoam; None."""
     for name in ("log.mixflowCoupled", "log.mixflowDem", "log.mixflowFoam"):
-        path = os.path.join(s.dir, name)
-        if not os.path.isfile(path):
-            continue
-        total, last, seen = 0.0, 0.0, False
-        with open(path, errors="replace") as f:
-            for line in f:
-                if line.startswith("ExecutionTime = "):
-                    t = float(line.split()[2])
-                    if t < last:  # a resumed attempt starts counting again
-                        total += last
-                    last, seen = t, True
-        if seen:
-            return total + last
+        if os.path.isfile(os.path.join(s.dir, name)):
+            return os.path.join(s.dir, name)
     return None
+
+
+def solver_cpu(s):
+    """CPU seconds of the scene's solver process, summed over a resumed run's attempts; None."""
+    log = solver_log(s)
+    t = execution_times(log) if log else None
+    return t["cpu_s"] if t else None
+
+
+def stage_times(s):
+    """Where a mixture run's wall time went: postProcessing/coupling/stageTimes.csv summed per
+    stage (rank 0's DEM interval and exchange stages), the solver's clock time, and the rest
+    (fluid step, writes, start-up) = clock - stages; None without both."""
+    path = os.path.join(s.dir, "postProcessing", "coupling", "stageTimes.csv")
+    log = solver_log(s)
+    clock = execution_times(log) if log else None
+    if not os.path.isfile(path) or not clock:
+        return None
+    rows = read_rows(path)
+    if not rows:
+        return None
+    out = {k: float(sum(float(r[k]) for r in rows)) for k in rows[0] if k not in ("time", "demStep")}
+    out["clock_s"] = clock["clock_s"]
+    out["fluid_and_rest"] = clock["clock_s"] - sum(v for k, v in out.items() if k != "clock_s")
+    return out
 
 
 def deposit_difference(s, ref):

@@ -331,6 +331,12 @@ with open(os.path.join(cpu_dir, "log.mixflowCoupled"), "w") as f:
             "resume\nExecutionTime = 3 s  ClockTime = 3 s\nExecutionTime = 100 s  ClockTime = 101 s\n")
 check(observables.solver_cpu(SimpleNamespace(dir=cpu_dir)) == 350.5,
       "solver CPU sums a resumed run's attempts (250.5 + 100 s)")
+os.makedirs(os.path.join(cpu_dir, "postProcessing", "coupling"))
+with open(os.path.join(cpu_dir, "postProcessing", "coupling", "stageTimes.csv"), "w") as f:
+    f.write("# wall s\ntime,demStep,dem,locate\n0.1,10,100,50\n0.2,20,80,20\n")
+st = observables.stage_times(SimpleNamespace(dir=cpu_dir))
+check(st == {"dem": 180, "locate": 70, "clock_s": 361, "fluid_and_rest": 111},
+      f"stage times: each stage summed, the clock summed over attempts, the rest ({st})")
 liq = os.path.join(work, "liq")
 for t in ("0", "0.1", "0.2"):
     os.makedirs(os.path.join(liq, t, "uniform", "functionObjects"))

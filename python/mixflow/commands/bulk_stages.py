@@ -48,7 +48,7 @@ def run(cmd, cwd=None, fatal=True):
 def result(case, ref_front):
     t, front = last(os.path.join(case, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
     return {"time_s": t, "front_m": front, "front_error": front / ref_front - 1,
-            "solver_cpu_s": foamcase.last_execution_time(
+            "solver_cpu_s": foamcase.execution_time(
                 os.path.join(case, "log.mixflowBulkFoam"))}
 
 

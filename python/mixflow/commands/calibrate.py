@@ -308,7 +308,7 @@ def main(argv=None):
            "bulk_cell_size_m": cell, "solid_fraction": written["solid_fraction"],
            "solid_fraction_from": written["solid_fraction_from"],
            "drift_range": written["drift_range"],
-           "bulk_solver_cpu_s": foamcase.last_execution_time(
+           "bulk_solver_cpu_s": foamcase.execution_time(
                os.path.join(bulk, "log.mixflowBulkFoam")),
            "calibration": calibration_summary(res), "comparison": cmp}
     out["plots"] = plots(cmp, work)

@@ -106,7 +106,7 @@ def score(case, ref, times):
     return {"fronts_m": [fronts[t] for t in times], "errors": errors,
             "rms_error": math.sqrt(sum(e * e for e in errors) / len(errors)),
             "final_error": errors[-1],
-            "solver_cpu_s": foamcase.last_execution_time(os.path.join(case, "log.mixflowBulkFoam"))}
+            "solver_cpu_s": foamcase.execution_time(os.path.join(case, "log.mixflowBulkFoam"))}
 
 
 def main():

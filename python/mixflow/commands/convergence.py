@@ -14,7 +14,7 @@ finished is not rerun (the ladder resumes); a later --end takes the finished run
 runs reach: fronts, the grains' released potential energy, the liquid front (also at depth
 d/2), the back-wall height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the
 suite command with its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver
-process's last ExecutionTime) go to OUT/summary.json under ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
+process's ExecutionTime; stage_wall_s: where the solver's wall time went, obs.stage_times) go to OUT/summary.json under ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
 listed) under ladders.LABEL.SCENE.change_against_finest. A ladder has converged when its second-finest value is
 within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
 both reach (ladders.LABEL.SCENE.converged); beside them, the end's deposit profile h(x) against
@@ -115,6 +115,7 @@ def collect(args):
             with open(cost_file) as f:
                 row["cpu_s"] = json.load(f)["cpu_s"]
         row["solver_cpu_s"] = obs.solver_cpu(s)
+        row["stage_wall_s"] = obs.stage_times(s)
         dem_summary = os.path.join(s.dir, "postProcessing", "dem", "summary.json")
         if os.path.exists(dem_summary):
             with open(dem_summary) as f:
