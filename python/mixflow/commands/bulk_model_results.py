@@ -1,7 +1,7 @@
 """results/bulk_model/: the bulk model of W&P, HB&P, B&P and the dry P against the CFD-DEM reference.
 
 usage: mixflow bulk-model-results [--work runs/bulk] [--reference runs/reference]
-                                                      [--out results/bulk_model]
+                                                      [--out results/bulk_model] [--committed-only]
 after `mixflow suite --tier bulk --scenes W+P,HB+P,B+P --work runs/bulk` and
 `mixflow suite --tier reference --scenes W+P,HB+P,B+P,P --work runs/reference`.
 
@@ -112,12 +112,47 @@ def speedups():
     return out
 
 
+def round_trip(out_dir):
+    """The round trip's block (OUT/round_trip.json, tests/bulk/test_round_trip.py --json): per
+    pore reference, the largest drift error over the sampled cells, the front and h(x, t) errors;
+    `passes` and the headline numbers are the solver's own reference's (mixture); None without."""
+    path = os.path.join(out_dir, "round_trip.json")
+    if not os.path.isfile(path):
+        return None
+    d = load(path)
+    runs = {r["pore_reference"]: {"drift_error": max(x["max_abs_error"] for x in r["drifts"].values()),
+                                  "front_error": r["front_error"], "h_error_m": r["h_error_m"]}
+            for r in d["runs"].values()}
+    main_run = runs.get("mixture", {})
+    return {"drift_error": main_run.get("drift_error"), "front_error": main_run.get("front_error"),
+            "h_error_m": main_run.get("h_error_m"), "passes": d["passes"], "by_pore_reference": runs,
+            "file": os.path.relpath(path, ROOT),
+            "command": "python3 tests/bulk/test_round_trip.py build/bin runs/round_trip "
+                       "--json results/bulk_model/round_trip.json"}
+
+
+def committed_blocks(out_dir):
+    """The summary's blocks made from committed result files alone (no run directory)."""
+    return {"round_trip": round_trip(out_dir), "speedup": speedups(),
+            "speedup_baseline": "the CFD-DEM solver's CPU time (mixflowCoupled; for P mixflowDem's "
+                                "collapse) measured in the same bench run as the bulk model's"}
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--work", default="runs/bulk")
     p.add_argument("--reference", default="runs/reference")
     p.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model"))
+    p.add_argument("--committed-only", action="store_true",
+                   help="refresh only the blocks made from committed result files (round_trip, "
+                   "speedup) in OUT/summary.json, keeping the rest: no run directory needed")
     a = p.parse_args()
+    if a.committed_only:
+        path = os.path.join(a.out, "summary.json")
+        out = load(path)
+        out.update(committed_blocks(a.out))
+        outputs.write_json(path, out)
+        return 0
     stages = load(os.path.join(a.out, "stages.json"))
     solid = load(os.path.join(a.out, "solid_calibration.json"))
     out = {"command": "mixflow bulk-model-results " + " ".join(sys.argv[1:]),
@@ -146,9 +181,7 @@ def main():
                           "fronts": [{"time_s": t, "bulk_front_m": b, "cfd_dem_front_m": r}
                                      for t, b, r in zip(p_times, p_best["fronts_m"],
                                                         solid["reference_front_m"])]}
-    out["speedup"] = speedups()
-    out["speedup_baseline"] = ("the CFD-DEM solver's CPU time (mixflowCoupled; for P mixflowDem's "
-                               "collapse) measured in the same bench run as the bulk model's")
+    out.update(committed_blocks(a.out))
     outputs.write_json(os.path.join(a.out, "summary.json"), out)
     outputs.write_csv(os.path.join(a.out, "fronts.csv"), rows)
 
