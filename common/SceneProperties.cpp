@@ -1,5 +1,6 @@
 #include "SceneProperties.h"
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -29,6 +30,7 @@ Schema makeSchema() {
   const ChannelSpec c{};
   const ParticleMaterial p{};
   const AirProperties a{};
+  const GateSpec g{};
   const SceneProperties scene{};
   const std::vector<std::string> yieldStress{"HerschelBulkley", "Bingham"};
   return Schema(
@@ -78,6 +80,37 @@ Schema makeSchema() {
                     "walls: frictional (grains) and no-slip (liquid) side walls at z = 0, W "
                     "(paper); periodic: an infinitely wide channel (cyclic z faces of a 3-D "
                     "liquid). 2-D liquid: ignored (no side walls)"),
+          dictParam("gate",
+                    "the gate at x = L that holds the column until t = 0 (optional: removed at "
+                    "once)"),
+          wordParam("gate.removal", g.removal, {"instant", "lifted"},
+                    "instant: the gate is gone at t = 0 (the paper's); lifted: a plate at "
+                    "x = L whose lower edge rises from the channel floor as h(t) (`speed` or "
+                    "`lift`), the liquid leaving below it (mixflowFoam, implicit momentum sink "
+                    "in the plate's cells whose centres lie above h; cfd/README.md). Liquid "
+                    "scenes only"),
+          scalarParam("gate.speed", 0, Range::nonNegative(), "m/s",
+                      "lifted: h(t) = speed t (0: a plate that never lifts); give `speed` or "
+                      "`lift`, not both")
+              .only({"lifted"})
+              .shownDefault("(lifted: speed or lift)")
+              .plausible(Range::closed(0.0, 100.0), "a gate lifted by hand or by a machine",
+                         {{"mm/s", 1e-3}, {"cm/s", 1e-2}}),
+          textParam("gate.lift", "",
+                    "lifted: the table ((t0 h0) (t1 h1) ...) of the lower edge's height h (m "
+                    "above the floor) against t (s): linear between points, h0 before t0 and "
+                    "the last h after the last point")
+              .only({"lifted"})
+              .shownDefault("(lifted: speed or lift)")
+              .alsoAllowed("t ≥ 0 increasing, h ≥ 0"),
+          autoScalar("gate.thickness", Range::positive(), "m",
+                     "lifted: the plate spans L ≤ x < L + thickness, its cells are those whose "
+                     "centres lie in it; auto: two cells (cfdDict cellSize). One cell lets the "
+                     "liquid through: a face's 1/A in the pressure equation is the mean of its "
+                     "two cells', so the faces to the free cells are half open (measured 28 % "
+                     "of a held column beyond a one-cell plate after 0.2 s)")
+              .only({"lifted"})
+              .alsoAllowed("≥ two cells, < channel length − L"),
           dictParam("particles", "the grains (Table 3); moduli before softening"),
           scalarParam("particles.diameter", p.diameter, Range::positive(), "m", "d (Table 3)")
               .plausible(Range::closed(1e-5, 0.5), "a grain, from silt to boulders",
@@ -199,6 +232,46 @@ bool contains(const std::vector<std::string>& v, const std::string& k) {
   return false;
 }
 
+// The gate's entries depend on its removal; one of speed and lift gives a lifted gate's law.
+void readGate(const Schema& sc, const Dictionary& d, const std::string& content, GateSpec& g) {
+  g.removal = sc.word(d, "gate.removal");
+  const std::vector<std::string> allowed = sc.keys("gate", g.removal);
+  for (const auto& k : d.keys())
+    if (!contains(allowed, k) && contains(sc.keys("gate"), k))
+      d.fail(k, "is not a parameter of removal " + g.removal +
+                    "; its entries are: " + joinWords(allowed));
+  d.allowOnly(allowed);
+  if (!g.lifted()) return;
+  // The DEM half has no moving wall: a lifted gate holds the liquid only.
+  if (content != "liquid")
+    d.fail("removal",
+           "value lifted is implemented for content liquid only (this scene's "
+           "content is " +
+               content + "); allowed words here: instant");
+  const bool hasSpeed = d.has("speed"), hasLift = d.has("lift");
+  if (hasSpeed == hasLift)
+    d.fail(hasSpeed ? "lift" : "speed",
+           std::string(hasSpeed ? "give either speed or lift, not both"
+                                : "missing (required): a lifted gate needs speed (m/s), "
+                                  "allowed range [0, inf), or the table lift ((t0 h0) ...)"));
+  if (hasSpeed) {
+    g.speed = sc.scalar(d, "gate.speed");
+  } else {
+    const std::vector<double> v = d.scalars("lift", Range::nonNegative());
+    if (v.empty() || v.size() % 2 != 0)
+      d.fail("lift", "needs (t h) pairs, ((t0 h0) (t1 h1) ...), at least one; got " +
+                         std::to_string(v.size()) + " numbers");
+    for (size_t i = 0; i < v.size(); i += 2) {
+      if (i > 0 && v[i] <= v[i - 2])
+        d.fail("lift", "time " + num(v[i]) + " s follows " + num(v[i - 2]) +
+                           " s; the times must increase, allowed range (" + num(v[i - 2]) +
+                           ", inf)");
+      g.lift.emplace_back(v[i], v[i + 1]);
+    }
+  }
+  if (const auto t = sc.scalarOrAuto(d, "gate.thickness")) g.thickness = *t;
+}
+
 // The liquid's entries depend on its rheology; an entry of another rheology is named as such
 // (e.g. yieldStress for a Newtonian liquid), not just as "unknown".
 void readLiquid(const Schema& sc, const Dictionary& d, SceneProperties& s) {
@@ -312,6 +385,19 @@ void checkGeometry(const Dictionary& scene, const SceneProperties& s) {
 }
 }  // namespace
 
+double GateSpec::height(double t) const {
+  if (!lifted()) return 0;
+  if (speed >= 0) return speed * std::max(t, 0.0);
+  if (t <= lift.front().first) return lift.front().second;
+  for (size_t i = 1; i < lift.size(); ++i)
+    if (t <= lift[i].first) {
+      const auto& [t0, h0] = lift[i - 1];
+      const auto& [t1, h1] = lift[i];
+      return h0 + (h1 - h0) * (t - t0) / (t1 - t0);
+    }
+  return lift.back().second;
+}
+
 double ParticleMaterial::volume() const { return kPi / 6.0 * diameter * diameter * diameter; }
 double ParticleMaterial::mass() const { return density * volume(); }
 
@@ -332,6 +418,11 @@ SceneProperties SceneProperties::read(const Dictionary& scene, Half half) {
   readSample(sc, scene.subDict("sample"), s.sample);
   readChannel(sc, scene.subDict("channel"), s.channel);
   if (s.grains()) readParticles(sc, scene.subDictOrEmpty("particles"), s.particles);
+  {
+    const Dictionary gate = scene.subDictOrEmpty("gate");
+    sc.allowOnly(gate, "gate");  // every removal's entries; readGate names the misplaced ones
+    readGate(sc, gate, s.content, s.gate);
+  }
   if (half == Half::fluid && s.fluid()) readLiquid(sc, scene.subDict("liquid"), s);
   if (half == Half::grains && s.content == "mixture")
     s.liquid.density = sc.scalar(scene.subDict("liquid"), "liquid.density");

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "Dictionary.h"
 #include "Schema.h"
@@ -23,6 +25,17 @@ struct ChannelSpec {
   double length = 0;                // x of the outlet (m); particles beyond are deleted
   double height = 0;                // y of the open top (m); particles above are deleted
   std::string sideWalls = "walls";  // walls | periodic (an infinitely wide channel)
+};
+
+// How the gate at x = L leaves the column at t = 0: removed at once (the paper's), or lifted as a
+// plate whose lower edge rises from the channel floor by a law h(t) (liquid scenes only).
+struct GateSpec {
+  std::string removal = "instant";  // instant | lifted
+  double speed = -1;                // m/s, h = speed t; < 0: the table `lift` gives h(t)
+  std::vector<std::pair<double, double>> lift;  // (t, h) points, linear between, held outside
+  double thickness = 0;                         // m along x; 0: one cell (auto)
+  bool lifted() const { return removal == "lifted"; }
+  double height(double t) const;  // h(t) of the law (m above the floor)
 };
 
 struct ParticleMaterial {
@@ -71,6 +84,7 @@ struct SceneProperties {
   ParticleMaterial particles;  // read for particles and mixture; defaults otherwise
   Rheology liquid;             // the fluid half: read for liquid and mixture
   AirProperties air;
+  GateSpec gate;
   double surfaceTension = 0.07;  // N/m (water-air; the paper gives none)
 
   bool grains() const { return content != "liquid"; }

@@ -11,6 +11,8 @@
 //   system/fvSchemes, system/fvSolution, system/decomposeParDict (simple, ranks x 1 x 1)
 //   constant/transportProperties (kinematic values from the SI input), constant/g,
 //   constant/turbulenceProperties (laminar)
+//   constant/fvOptions     a lifted gate (sceneProperties gate): mixflowFoam's liquidGate; removed
+//                          when the gate is instant and the file is mixflowPrepare's
 //   0/alpha.liquid (the sample box [0, L] x [0, H] filled exactly: partly covered cells get
 //   their covered fraction), 0/U, 0/p_rgh
 #pragma once

@@ -78,6 +78,7 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   c.channel = scene.channel;
   c.liquid = scene.liquid;
   c.air = scene.air;
+  c.gate = scene.gate;
   c.surfaceTension = scene.surfaceTension;
 
   const Dictionary cfd = Dictionary::readFile((fs::path(caseDir) / "system/cfdDict"));
@@ -129,6 +130,23 @@ LiquidCase LiquidCase::read(const std::string& caseDir) {
   if (cells > 5e7)
     cfd.fail("cellSize", "value " + shortNum(h) + " m gives " + shortNum(cells) +
                              " cells (limit 5e7); use a larger cell size or dimensions 2");
+  if (c.gate.lifted()) {
+    // The plate's cells are those whose centres lie in [L, L + thickness). It must be two cells
+    // thick: the pressure equation takes a face's 1/A as the mean of its two cells', so a face
+    // between a held cell and a free one is half open, and a one-cell plate lets the liquid
+    // through (measured: 28 % of a held water column beyond it after 0.2 s; two cells: 2e-22).
+    if (c.gate.thickness == 0) c.gate.thickness = kGatePlateCells * c.dx();
+    const double room = c.channel.length - c.sample.length;
+    const double least = kGatePlateCells * c.dx();
+    if (c.gate.thickness < least * (1 - 1e-9) || c.gate.thickness >= room)
+      sceneDict.subDict("gate").fail(
+          "thickness", "value " + shortNum(c.gate.thickness) +
+                           " m: the plate must hold two cells along x (cfdDict cellSize gives " +
+                           shortNum(c.dx()) +
+                           " m; one cell lets the liquid through) and end "
+                           "before the outlet; allowed range [" +
+                           shortNum(least) + ", " + shortNum(room) + ")");
+  }
   if (c.observables.sectionX >= c.channel.length) {
     // The paper's section (1.38 m) is outside a short test channel: no section then. A section
     // asked for explicitly must lie inside.

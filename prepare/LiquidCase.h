@@ -20,6 +20,7 @@ namespace mixflow::cfd {
 using LiquidSample = SampleSpec;
 using LiquidChannel = ChannelSpec;
 using mixflow::AirProperties;
+using mixflow::GateSpec;
 using mixflow::Rheology;
 
 // cfdDict's entries: CfdDict.h.
@@ -34,6 +35,7 @@ struct LiquidCase {
   LiquidChannel channel;
   Rheology liquid;
   AirProperties air;
+  GateSpec gate;              // sceneProperties gate; thickness resolved (auto: two cells)
   double surfaceTension = 0;  // N/m (liquid.surfaceTension)
   CfdNumerics numerics;
   ObservableSpec observables;
@@ -83,6 +85,9 @@ struct LiquidCase {
   double minDepthUsed() const {
     return observables.minDepth > 0 ? observables.minDepth : 0.5 * dy();
   }
+
+  // Cells along x of a lifted gate's plate, the least and the default (LiquidCase::read).
+  static constexpr int kGatePlateCells = 2;
 
   static LiquidCase read(const std::string& caseDir);
 };

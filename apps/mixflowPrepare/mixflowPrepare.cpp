@@ -110,7 +110,8 @@ int main(int argc, char** argv) {
       if (grains) cfd::writeMixtureDemScript(mixture);
       std::cout << "[mixflowPrepare] wrote system/{blockMeshDict,controlDict,fvSchemes,"
                    "fvSolution,decomposeParDict}, constant/{transportProperties,g,"
-                   "turbulenceProperties}, 0/{alpha.liquid,U,p_rgh}"
+                   "turbulenceProperties"
+                << (c.gate.lifted() ? ",fvOptions" : "") << "}, 0/{alpha.liquid,U,p_rgh}"
                 << std::endl;
     }
   } catch (const InputError& e) {

@@ -44,6 +44,7 @@ std::vector<Table> tables() {
        mixflow::SceneProperties::schema(),
        {"", "sample", "channel", "particles"}},
       {"sceneProperties.liquid", mixflow::SceneProperties::schema(), {"liquid", "liquid.air"}},
+      {"sceneProperties.gate", mixflow::SceneProperties::schema(), {"gate"}},
       {"demDict", mixflow::DemDict::schema(), {"", "velocityProfile", "savage", "settle"}},
       {"cfdDict", mixflow::CfdDict::schema(), {"", "observables"}},
       {"mixflowProperties", mixflow::MixflowProperties::schema(), {""}},
