@@ -6,25 +6,28 @@ usage: mixflow convergence --scene HB+P --knob couplingProperties.exchangeEvery
            [--end 0.5] [--work runs/convergence] [--out results/convergence]
            [--settled-from WORK] [--against WORK] [--report-only]
 
-Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALUE --set ...
---set KNOB=VALUE --set controlDict.endTime=END`, the first value settling the grains and the
-others starting from its sample (--settled-from; with --settled-from WORK every value starts
-from WORK's sample, e.g. another ladder's first value), so only the knob differs. A value whose run
-finished is not rerun (the ladder resumes); a later --end takes the finished runs on to it. The observables at 0.25, 0.5, 1, 2, 3 s (those the
-runs reach: fronts, the grains' released potential energy, the liquid front (also at depth
-d/2), the back-wall height; scripts/tier_trade.py) and the CPU seconds of each run (cpu_s: the
-suite command with its children, WORK/LABEL/VALUE/rusage.SCENE.json; solver_cpu_s: the solver
-process's ExecutionTime; stage_wall_s: where the solver's wall time went, obs.stage_times) go to OUT/summary.json under ladders.LABEL.SCENE.VALUE, with each observable's change against the finest value (the last
-listed) under ladders.LABEL.SCENE.change_against_finest. A ladder has converged when its second-finest value is
-within 5 % of the finest in the released energy and within 0.05 m in the fronts at every time
-both reach (ladders.LABEL.SCENE.converged); beside them, the end's deposit profile h(x) against
-the finest's (relative L1, change_against_finest.VALUE.deposit_h_relative_l1) and the body's front
+Each value runs `mixflow suite --tier TIER --scenes SCENE --work WORK/LABEL/VALUE --set ... --set
+KNOB=VALUE --set controlDict.endTime=END`, the first value settling the grains and the others
+starting from its sample (--settled-from; with --settled-from WORK every value starts from WORK's
+sample, e.g. another ladder's first value), so only the knob differs. A value whose run finished
+is not rerun (the ladder resumes); a later --end takes the finished runs on to it. The observables
+at 0.25, 0.5, 1, 2, 3 s (those the runs reach: fronts, the grains' released potential energy, the
+liquid front (also at depth d/2), the back-wall height; scripts/tier_trade.py) and the CPU seconds
+of each run (cpu_s: the suite command with its children, WORK/LABEL/VALUE/rusage.SCENE.json;
+solver_cpu_s: the solver process's ExecutionTime; stage_wall_s: where the solver's wall time went,
+obs.stage_times) go to OUT/summary.json under ladders.LABEL.SCENE.VALUE, with each observable's
+change against the finest value (the last listed) under ladders.LABEL.SCENE.change_against_finest.
+A ladder has converged when its second-finest value is within 5 % of the finest in the released
+energy and within 0.05 m in the fronts at every time both reach (ladders.LABEL.SCENE.converged);
+beside them, the end's deposit profile h(x) against the finest's (relative L1,
+change_against_finest.VALUE.deposit_h_relative_l1) and the body's front
 (granular_thickness_front_m, where the deposit thins below d); with --against WORK each value's
 change against that run (change_against_base: a noise-floor run against the run it perturbs).
-converged.SCENE is true once every ladder of the scene has (a one-value ladder, a noise-floor
-run, is none), and truth_tier stays null until then; packing lists each ladder's sample solid
-fraction against the target. The static beds' measurements (OUT/static_bed/*.json, tests/coupling/
-run_settled_bed.py --json) are gathered into static_bed.
+converged.SCENE is true once every ladder of the scene has (a one-value ladder, a noise-floor run,
+is none), and truth_tier stays null until then; packing lists each ladder's sample solid fraction
+against the target, and the grains' critical packing (results/critical_packing). The static beds'
+measurements (OUT/static_bed/*.json, tests/coupling/run_settled_bed.py --json) are gathered into
+static_bed.
 """
 import argparse
 import glob
@@ -198,6 +201,15 @@ def main(argv=None):
         "achieved": {f"{label}/{scene}": sorted({r.get("sample_solid_fraction")
                                                  for r in sc["values"].values()} - {None})
                      for label, lad in summary["ladders"].items() for scene, sc in lad.items()}}
+    # The critical packing of these grains (results/critical_packing: steady plane shear, the
+    # bulk fraction as I -> 0): a sample denser than it is dense.
+    crit = os.path.join(ROOT, "results", "critical_packing", "critical_packing.json")
+    if os.path.isfile(crit):
+        with open(crit) as f:
+            c = json.load(f)
+        summary["packing"]["critical"] = {"phi_c": c["phi_c"], "phi_c_error": c["phi_c_error"],
+                                          "wall_margin_3d": c["fit_margin_3d"]["phi_c"],
+                                          "file": os.path.relpath(crit, ROOT)}
     # The cheapest setting every ladder of every scene accepts; none until they all converge.
     summary["truth_tier"] = None if not all(summary["converged"].values()) else \
         summary.get("truth_tier")
