@@ -10,10 +10,10 @@ import os
 
 import numpy as np
 
-from .foamcase import execution_times
+from .foamcase import execution_time, execution_times
 from .foamdict import read_dict
 from .froude import first_time, subcritical_after_arrival
-from .outputs import interpolated as at, read_rows
+from .outputs import STAGE_TIMES, interpolated as at, read_rows
 from .paper import D_P, DRY_SERIES, G, PAPER_NAME
 from .runout import fit_power_law, power_law_slope_error, thickness_front
 
@@ -138,15 +138,14 @@ def solver_log(s):
 def solver_cpu(s):
     """CPU seconds of the scene's solver process, summed over a resumed run's attempts; None."""
     log = solver_log(s)
-    t = execution_times(log) if log else None
-    return t["cpu_s"] if t else None
+    return execution_time(log) if log else None
 
 
 def stage_times(s):
     """Where a mixture run's wall time went: postProcessing/coupling/stageTimes.csv summed per
     stage (rank 0's DEM interval and exchange stages), the solver's clock time, and the rest
     (fluid step, writes, start-up) = clock - stages; None without both."""
-    path = os.path.join(s.dir, "postProcessing", "coupling", "stageTimes.csv")
+    path = os.path.join(s.dir, STAGE_TIMES)
     log = solver_log(s)
     clock = execution_times(log) if log else None
     if not os.path.isfile(path) or not clock:

@@ -24,6 +24,7 @@ RANK_LOAD = "postProcessing/dem/rankLoad.csv"  # per MPI rank: particles, LIGGGH
 LIQUID_SERIES = "postProcessing/liquid/timeSeries.csv"  # liquid fronts, depths, Froude number
 LIQUID_PROFILES = "postProcessing/liquid/profiles.csv"
 EXCHANGE = "postProcessing/coupling/exchange.csv"  # fluid-particle exchange, one row an exchange
+STAGE_TIMES = "postProcessing/coupling/stageTimes.csv"  # wall s per exchange stage, rows as EXCHANGE
 DONE, FAILED = ".done", ".failed"  # markers mixflow suite writes into a run directory
 SERIES = {"dem": DEM_SERIES, "liquid": LIQUID_SERIES, "exchange": EXCHANGE}
 # What a run writes at its case directory's top level (shell patterns), with the time directories
