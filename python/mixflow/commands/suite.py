@@ -469,10 +469,10 @@ def tag_summaries(run_dir, tier_name):
 def extend_run(run_dir, tier, end):
     """A run copy goes on to a later endTime: its controlDict and its system/tier record (the
     --set values and the controlDict override) take the new one, and .done goes."""
-    edit_file(os.path.join(run_dir, FILES["controlDict"]), {"endTime": f"{end:g}"}, note="set")
+    edit_file(os.path.join(run_dir, FILES["controlDict"]), {"endTime": f"{end:.12g}"}, note="set")
     edit_file(os.path.join(run_dir, "system", "tier"),
               {"set": f'"{tier.set_text}"',
-               "overrides": {FILES["controlDict"]: {"endTime": f"{end:g}"}}}, create_blocks=True)
+               "overrides": {FILES["controlDict"]: {"endTime": f"{end:.12g}"}}}, create_blocks=True)
     if os.path.exists(os.path.join(run_dir, outputs.DONE)):
         os.remove(os.path.join(run_dir, outputs.DONE))
 
