@@ -89,7 +89,13 @@ int runCoupled(int argc, char* argv[]) {
 
   Info << "\nStarting time loop\n" << endl;
 
+  // A write's resume state waits for the next runTime.run(): the function objects write their
+  // state into that write's uniform/ only then, and a resume from a write without it restarts
+  // their series (postProcessing/liquid) instead of appending.
+  word writeToRecord;
   while (runTime.run()) {
+    if (monitor && !writeToRecord.empty()) monitor->afterWrite(writeToRecord);
+    writeToRecord.clear();
     // clang-format off
 #include "readTimeControls.H"
 #include "courantNumbers.H"
@@ -112,11 +118,12 @@ int runCoupled(int argc, char* argv[]) {
     if (monitor) {
       monitor->afterStep();
       // After the step's granular row, so that a resumed run finds its counters up to date.
-      if (runTime.writeTime()) monitor->afterWrite(runTime.timeName());
+      if (runTime.writeTime()) writeToRecord = runTime.timeName();
     }
 
     runTime.printExecutionTime(Info);
   }
+  if (monitor && !writeToRecord.empty()) monitor->afterWrite(writeToRecord);
   if (monitor) monitor->finish();
 
   Info << "End\n" << endl;

@@ -165,6 +165,14 @@ check(t_w is not None and abs(t_w - 0.05) < 1e-3,
       f"B's resume state is its first field write ({t_w} s)")
 if t_w is None:
     sys.exit("run B wrote no resume state:\n" + out[-3000:])
+# A resume point is a complete write: the function objects' state (the liquid series' volumes)
+# is in it when the state names it, or the resumed liquid series would start again.
+name = re.search(r'^timeName\s+"?([^";]+)"?;',
+                 open(os.path.join(b, "dem", "coupled.resume.state")).read(), re.M).group(1)
+props = os.path.join(b, "" if ranks == "1" else "processor0", name, "uniform", "functionObjects",
+                     "functionObjectProperties")
+check(os.path.exists(props) and "initialVolume" in open(props).read(),
+      f"the resume point {name} holds the liquid series' state ({os.path.relpath(props, b)})")
 
 # What a kill during a later write leaves (a decomposed run writes into processor*/).
 later = os.path.join(b, "0.0700000" if ranks == "1" else "processor0/0.0700000")
