@@ -68,6 +68,18 @@ def _merge(a, b):
     return out
 
 
+def set_item(item):
+    """(FILE.entry[.sub], VALUE) of one --set item; DictError unless it is FILE.entry=VALUE with FILE
+    a case file."""
+    key, sep, value = item.partition("=")
+    fkey, *path = key.split(".")
+    if not sep or not path or not value.strip():
+        raise DictError(f"--set '{item}': expected FILE.entry=VALUE")
+    if fkey not in FILES:
+        raise DictError(f"--set '{item}': '{fkey}' is not a case file (allowed: {', '.join(FILES)})")
+    return key, value.strip()
+
+
 class Tier:
     """A named set of per-file overrides (cases/tiers/<name>)."""
 
@@ -108,16 +120,12 @@ class Tier:
         recorded with the run: a variant of a tier (another drag scheme, exchange interval ...)
         is then a rerunnable command rather than a hand-edited copy."""
         for item in items:
-            key, sep, value = item.partition("=")
+            key, value = set_item(item)
             fkey, *path = key.split(".")
-            if not sep or not path or not value.strip():
-                raise DictError(f"--set '{item}': expected FILE.entry=VALUE")
-            if fkey not in FILES:
-                raise DictError(f"--set '{item}': '{fkey}' is not a case file (allowed: {', '.join(FILES)})")
             node = self.sets.setdefault(fkey, {})
             for b in path[:-1]:
                 node = node.setdefault(b, {})
-            node[path[-1]] = value.strip()
+            node[path[-1]] = value
         self.set_text = " ".join(items)
 
     def overrides(self, scene, content):
@@ -316,7 +324,7 @@ def _split_end(set_text):
     """(the --set items other than controlDict.endTime, its value or None)."""
     items, end = [], None
     for item in set_text.split():
-        key, _, value = item.partition("=")
+        key, value = set_item(item)
         if key == "controlDict.endTime":
             end = value
         else:
