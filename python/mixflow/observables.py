@@ -170,6 +170,24 @@ def deposit_difference(s, ref):
     return float(np.nansum(np.abs(h[:n] - h_ref[:n])) / total) if total > 0 else None
 
 
+def deposit_tail(s):
+    """The end deposit's front by packed volume depth (first bin beyond L whose grain volume is
+    less than one packed grain layer) beside the column-top front (front_thickness_x_m's rule),
+    and the share of the deposit's grain volume beyond the volume front. On a slice 2-3 columns
+    wide one grain in a column raises its top, so a sheet or spray of a few grains ahead of the
+    body moves the column-top front and not the volume front; None without a profile."""
+    if not s.deposit:
+        return None
+    path = os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv")
+    front = thickness_front(path, s.L, D_P, column="h_volume_m")
+    x, h = col(s.deposit, "x_m"), col(s.deposit, "h_volume_m")
+    total = float(np.nansum(h))
+    return {"time_s": float(s.deposit[0]["time_s"]), "volume_front_m": front,
+            "top_front_m": thickness_front(path, s.L, D_P),
+            "volume_beyond_volume_front": float(np.nansum(h[x > front]) / total) if total > 0
+            else None}
+
+
 def granular_front(s):
     return (col(s.dem, "time_s"), col(s.dem, "front_x_m")) if s.dem else None
 

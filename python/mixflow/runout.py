@@ -31,12 +31,13 @@ def power_law_slope_error(a, r):
     return math.sqrt(res / (n - 2) / sum((x - mx) ** 2 for x in xs))
 
 
-def thickness_front(profile_csv, L, d):
-    """First bin beyond L whose width-averaged column top is below one grain: its left edge."""
+def thickness_front(profile_csv, L, d, column="h_top_m"):
+    """First bin beyond L whose width-averaged column top (or, with column h_volume_m, whose
+    grain volume as a packed depth) is below one grain: its left edge."""
     rows = list(csv.DictReader(open(profile_csv)))
     xs = [float(r["x_m"]) for r in rows]
     dx = xs[1] - xs[0]
     for r, x in zip(rows, xs):
-        if x > L and float(r["h_top_m"]) < d:
+        if x > L and float(r[column]) < d:
             return max(L, x - 0.5 * dx)
     return xs[-1] + 0.5 * dx

@@ -24,7 +24,11 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      dictionary file, each default lies in its declared range or words (none where the default
      is required, auto or taken from elsewhere: defaultNote), an entry a dictionary
      does not set takes the declared default (suite's cost estimate with and without
-     sample.solidFraction), and a build without mixflowSchema stops with SchemaError.
+     sample.solidFraction), and a build without mixflowSchema stops with SchemaError;
+  7. observables.deposit_tail: on an end profile (bins of d = 0.024 m, L = 0.6 m) whose body
+     (packed depth 3 d) ends at 41 d = 0.984 m and whose 4-bin sheet ahead holds d/4 of packed depth
+     under column tops of 2 d, the volume front is 0.984 m, the column-top front 45 d = 1.08 m, and
+     the sheet's share of the grain volume is (4 x 1/4) / (41 x 3 + 4 x 1/4) = 1/124.
 """
 import io
 import math
@@ -37,7 +41,7 @@ from contextlib import redirect_stdout
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import mixflow  # noqa: E402
 from mixflow.commands import suite  # noqa: E402
-from mixflow import cli, foamcase, foamdict, outputs, paper, schema  # noqa: E402
+from mixflow import cli, foamcase, foamdict, observables, outputs, paper, schema  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
@@ -181,6 +185,25 @@ r = subprocess.run([sys.executable, "-c", "from mixflow import schema; schema.de
                    capture_output=True, text=True, env=dict(os.environ, MIXFLOW_BUILD=empty))
 check(r.returncode != 0 and "SchemaError: mixflowSchema not found in " + empty in r.stderr,
       f"no mixflowSchema in MIXFLOW_BUILD: SchemaError ({r.stderr.strip().splitlines()[-1]})")
+
+# 7. observables.deposit_tail
+case = os.path.join(work, "deposit", "HB+P")
+os.makedirs(os.path.join(case, "constant"))
+os.makedirs(os.path.join(case, "postProcessing", "dem"))
+open(os.path.join(case, ".done"), "w").write("{}")
+with open(os.path.join(case, "constant", "sceneProperties"), "w") as f:
+    f.write("content mixture;\nsample { length 0.6; height 0.6; width 0.12; }\n")
+d = paper.D_P
+with open(os.path.join(case, "postProcessing", "dem", "depositProfile.csv"), "w") as f:
+    f.write("x_m,h_top_m,h_volume_m,time_s\n")
+    for i in range(60):  # bins 0..40: the body; 41..44: the sheet; then empty
+        h_top, h_vol = (3 * d, 3 * d) if i <= 40 else (2 * d, d / 4) if i <= 44 else (0, 0)
+        f.write(f"{(i + 0.5) * d!r},{h_top!r},{h_vol!r},0.3\n")
+tail = observables.deposit_tail(observables.Scene(os.path.dirname(case), "HB+P"))
+check(tail is not None and abs(tail["volume_front_m"] - 41 * d) < 1e-12
+      and abs(tail["top_front_m"] - 45 * d) < 1e-12
+      and abs(tail["volume_beyond_volume_front"] - 1 / 124) < 1e-12,
+      f"deposit_tail: volume front 41 d, column-top front 45 d, sheet share 1/124 ({tail})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

@@ -59,7 +59,8 @@ def observables(s, times):
             o["E_fc"] = float(np.interp(t, *efc))
         if s.dem:
             o["granular_front_m"] = read(s.dem, "front_x_m", t)
-            # The body's front (where the deposit thins below d), blind to grains run ahead.
+            # The body's front (where the mean column top falls below d): blind to single grains
+            # run ahead on a wide sample, not on a slice of 2-3 columns (obs.deposit_tail).
             o["granular_thickness_front_m"] = read(s.dem, "front_thickness_x_m", t)
         if pe is not None:
             tt, ek, ep = pe
