@@ -10,7 +10,7 @@ import os
 
 import numpy as np
 
-from .foamcase import execution_time, execution_times
+from .foamcase import execution_time, execution_times, read_internal_field, time_dirs
 from .foamdict import read_dict
 from .froude import first_time, subcritical_after_arrival
 from .outputs import STAGE_TIMES, interpolated as at, read_rows
@@ -186,6 +186,26 @@ def deposit_tail(s):
             "top_front_m": thickness_front(path, s.L, D_P),
             "volume_beyond_volume_front": float(np.nansum(h[x > front]) / total) if total > 0
             else None}
+
+
+def liquid_over_gate(s):
+    """The liquid volume (alpha.liquid x voidfraction x V, m3) beyond the gate (x > L) in the
+    column's upper half (y > H/2) at each field write, {time_s: m3}: the liquid that drains over
+    the gate's top corner, ahead of the grains, which is where the implicit drag's schemes part
+    first. None without the cell centres and volumes in 0/ (Cx, Cy, V) or a serial field write."""
+    zero = os.path.join(s.dir, "0")
+    if not s.done or not all(os.path.isfile(os.path.join(zero, f)) for f in ("Cx", "Cy", "V")):
+        return None
+    x, y, vol = (np.array(read_internal_field(os.path.join(zero, f))) for f in ("Cx", "Cy", "V"))
+    upper = (x > s.L) & (y > 0.5 * s.H)
+    out = {}
+    for t, name in time_dirs(s.dir):
+        fields = [os.path.join(s.dir, name, f) for f in ("alpha.liquid", "voidfraction")]
+        if t == 0 or not all(os.path.isfile(f) for f in fields):
+            continue
+        alpha, eps = (np.array(read_internal_field(f, len(x))) for f in fields)
+        out[f"{t:.3g}"] = float(np.sum((alpha * eps * vol)[upper]))
+    return out or None
 
 
 def granular_front(s):

@@ -28,7 +28,10 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
   7. observables.deposit_tail: on an end profile (bins of d = 0.024 m, L = 0.6 m) whose body
      (packed depth 3 d) ends at 41 d = 0.984 m and whose 4-bin sheet ahead holds d/4 of packed depth
      under column tops of 2 d, the volume front is 0.984 m, the column-top front 45 d = 1.08 m, and
-     the sheet's share of the grain volume is (4 x 1/4) / (41 x 3 + 4 x 1/4) = 1/124.
+     the sheet's share of the grain volume is (4 x 1/4) / (41 x 3 + 4 x 1/4) = 1/124;
+     observables.liquid_over_gate: on four cells of volume 0.5 m3 (x 0.3 / 0.9, y 0.1 / 0.5;
+     L = 0.6, H = 0.6) with liquid fractions 1 and void fractions 0.5 / 0.25 at one write, the
+     liquid over the gate is the one cell beyond L above H/2: 1 x 0.25 x 0.5 = 0.125 m3.
 """
 import io
 import math
@@ -204,6 +207,15 @@ check(tail is not None and abs(tail["volume_front_m"] - 41 * d) < 1e-12
       and abs(tail["top_front_m"] - 45 * d) < 1e-12
       and abs(tail["volume_beyond_volume_front"] - 1 / 124) < 1e-12,
       f"deposit_tail: volume front 41 d, column-top front 45 d, sheet share 1/124 ({tail})")
+
+scalars = lambda vals: f"dimensions [0 0 0 0 0 0 0];\ninternalField {foamcase.format_scalar_list(vals)};\n"
+for name, vals in (("Cx", [0.3, 0.9, 0.3, 0.9]), ("Cy", [0.1, 0.1, 0.5, 0.5]), ("V", [0.5] * 4)):
+    foamcase.write_foam_file(case, f"0/{name}", "volScalarField", name, scalars(vals))
+foamcase.write_foam_file(case, "0.03/alpha.liquid", "volScalarField", "alpha.liquid", scalars([1.0] * 4))
+foamcase.write_foam_file(case, "0.03/voidfraction", "volScalarField", "voidfraction",
+                         scalars([0.5, 0.5, 0.5, 0.25]))
+over = observables.liquid_over_gate(observables.Scene(os.path.dirname(case), "HB+P"))
+check(over == {"0.03": 0.125}, f"liquid_over_gate: 0.125 m3 at 0.03 s ({over})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

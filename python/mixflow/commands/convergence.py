@@ -120,6 +120,7 @@ def collect(args):
         row["solver_cpu_s"] = obs.solver_cpu(s)
         row["stage_wall_s"] = obs.stage_times(s)
         row["end_deposit"] = obs.deposit_tail(s)
+        row["liquid_over_gate_m3"] = obs.liquid_over_gate(s)
         dem_summary = os.path.join(s.dir, "postProcessing", "dem", "summary.json")
         if os.path.exists(dem_summary):
             with open(dem_summary) as f:
