@@ -128,10 +128,12 @@ def execution_times(log):
     summed over the attempts a resumed run appended to it (each counts from zero); None without
     such a line or log."""
     total, last, seen = [0.0, 0.0], [0.0, 0.0], False
+    pattern = re.compile(r"ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s")
     try:
         with open(log, errors="replace") as f:
             for line in f:
-                m = re.match(r"ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s", line)
+                # A one-step-per-exchange log has millions of lines: test the prefix first.
+                m = line.startswith("ExecutionTime") and pattern.match(line)
                 if not m:
                     continue
                 t = [float(m.group(1)), float(m.group(2))]

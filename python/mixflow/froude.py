@@ -29,10 +29,19 @@ def subcritical_after_arrival(rows):
 def subcritical_from(rows, t0):
     """First time after t0 from which Fr < 1 holds for HOLD_S (or to the end), or None."""
     after = [r for r in rows if r["time_s"] >= t0 and not math.isnan(r["section_froude"])]
-    for i, r in enumerate(after):
-        if r["section_froude"] < 1:
-            hold = [q for q in after[i:] if q["time_s"] <= r["time_s"] + HOLD_S]
-            if all(q["section_froude"] < 1 for q in hold) and (
-                    hold[-1]["time_s"] >= r["time_s"] + HOLD_S - 0.05 or hold[-1] is after[-1]):
-                return r["time_s"]
+    i = 0
+    while i < len(after):
+        start = after[i]["time_s"]
+        j = i  # the rows of the window [start, start + HOLD_S], while Fr < 1
+        while j < len(after) and after[j]["time_s"] <= start + HOLD_S and \
+                after[j]["section_froude"] < 1:
+            j += 1
+        if j == i:
+            i += 1
+        elif j < len(after) and after[j]["time_s"] <= start + HOLD_S:
+            i = j + 1  # Fr >= 1 at j lies in the window of every start up to j
+        elif after[j - 1]["time_s"] >= start + HOLD_S - 0.05 or j == len(after):
+            return start
+        else:
+            i += 1
     return None

@@ -32,7 +32,7 @@ class Scene:
         self.exists = os.path.isdir(self.dir)
         self.failed = os.path.isfile(os.path.join(self.dir, ".failed"))
         self.tier = self.content = None
-        self.dem = self.liquid = self.exchange = self.summary = None
+        self.dem = self.liquid = self._exchange = self.summary = None
         self.deposit = self.velocity = self.profiles = None
         self.width = self.H = self.L = None
         if not self.done:
@@ -46,7 +46,7 @@ class Scene:
         self.L, self.H, self.width = (float(sp["sample"][k]) for k in ("length", "height", "width"))
         pp = os.path.join(self.dir, "postProcessing")
         opt = {"dem": "dem/timeSeries.csv", "liquid": "liquid/timeSeries.csv",
-               "exchange": "coupling/exchange.csv", "deposit": "dem/depositProfile.csv",
+               "deposit": "dem/depositProfile.csv",
                "velocity": "dem/velocityProfile.csv", "profiles": "liquid/profiles.csv"}
         for attr, rel in opt.items():
             path = os.path.join(pp, rel)
@@ -57,6 +57,15 @@ class Scene:
             with open(path) as f:
                 self.summary = json.load(f)
             self.tier = self.tier or self.summary.get("tier")
+
+    @property
+    def exchange(self):
+        """postProcessing/coupling/exchange.csv's rows, read at first use: one row per exchange,
+        so a run at one DEM step per exchange holds about 150 MB per simulated second."""
+        if self._exchange is None and self.done:
+            path = os.path.join(self.dir, "postProcessing", "coupling", "exchange.csv")
+            self._exchange = read_rows(path) if os.path.isfile(path) else None
+        return self._exchange
 
     def t_end(self):
         for rows in (self.liquid, self.dem):
@@ -150,10 +159,23 @@ def stage_times(s):
     clock = execution_times(log) if log else None
     if not os.path.isfile(path) or not clock:
         return None
-    rows = read_rows(path)
-    if not rows:
+    with open(path) as f:  # '#' comment lines, then the header
+        head = 1
+        for line in f:
+            if not line.startswith("#"):
+                keys = line.strip().split(",")
+                break
+            head += 1
+        else:
+            return None
+    try:  # one row per exchange: numpy's parser, the rows' reader for a file with a cut row
+        sums = np.loadtxt(path, delimiter=",", skiprows=head, ndmin=2).sum(axis=0)
+    except ValueError:
+        rows = read_rows(path)
+        sums = [sum(r[k] for r in rows) for k in keys]
+    if len(keys) < 3 or not np.size(sums):
         return None
-    out = {k: float(sum(float(r[k]) for r in rows)) for k in rows[0] if k not in ("time", "demStep")}
+    out = {k: float(v) for k, v in zip(keys, sums) if k not in ("time", "demStep")}
     out["clock_s"] = clock["clock_s"]
     out["fluid_and_rest"] = clock["clock_s"] - sum(v for k, v in out.items() if k != "clock_s")
     return out

@@ -31,7 +31,11 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      the sheet's share of the grain volume is (4 x 1/4) / (41 x 3 + 4 x 1/4) = 1/124;
      observables.liquid_over_gate: on four cells of volume 0.5 m3 (x 0.3 / 0.9, y 0.1 / 0.5;
      L = 0.6, H = 0.6) with liquid fractions 1 and void fractions 0.5 / 0.25 at one write, the
-     liquid over the gate is the one cell beyond L above H/2: 1 x 0.25 x 0.5 = 0.125 m3.
+     liquid over the gate is the one cell beyond L above H/2: 1 x 0.25 x 0.5 = 0.125 m3;
+  8. froude.subcritical_from: rows every 0.05 s to 1 s with Fr 1.5 to 0.3 s, 0.8 at 0.35-0.4 s,
+     1.2 at 0.45 s and 0.8 from 0.5 s: the flow turns subcritical at 0.5 s (the dip at 0.35 s
+     does not hold for 0.2 s); with Fr 0.8 from 0.9 s only, at 0.9 s (the run's end within the
+     hold); never below 1: None.
 """
 import io
 import math
@@ -44,7 +48,7 @@ from contextlib import redirect_stdout
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import mixflow  # noqa: E402
 from mixflow.commands import suite  # noqa: E402
-from mixflow import cli, foamcase, foamdict, observables, outputs, paper, schema  # noqa: E402
+from mixflow import cli, foamcase, foamdict, froude, observables, outputs, paper, schema  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
@@ -216,6 +220,13 @@ foamcase.write_foam_file(case, "0.03/voidfraction", "volScalarField", "voidfract
                          scalars([0.5, 0.5, 0.5, 0.25]))
 over = observables.liquid_over_gate(observables.Scene(os.path.dirname(case), "HB+P"))
 check(over == {"0.03": 0.125}, f"liquid_over_gate: 0.125 m3 at 0.03 s ({over})")
+
+# 8. froude.subcritical_from
+ts = [round(0.05 * k, 2) for k in range(21)]
+fr = lambda t: 1.5 if t <= 0.3 else 0.8 if t <= 0.4 else 1.2 if t <= 0.45 else 0.8
+got = [froude.subcritical_from([{"time_s": t, "section_froude": f(t)} for t in ts], 0)
+       for f in (fr, lambda t: 0.8 if t >= 0.9 else 1.5, lambda t: 1.5)]
+check(got == [0.5, 0.9, None], f"subcritical_from: 0.5 s, 0.9 s at the run's end, None ({got})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)
