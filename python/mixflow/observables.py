@@ -4,6 +4,7 @@ Froude rule's subcritical time, back-wall heights, energies and Eqs. 13-14, Sava
 changes and the dry runout law. Each derived number is None where the outputs do not allow it.
 Needs numpy (Debian's /usr/bin/python3)."""
 
+import itertools
 import json
 import math
 import os
@@ -159,22 +160,19 @@ def stage_times(s):
     clock = execution_times(log) if log else None
     if not os.path.isfile(path) or not clock:
         return None
-    with open(path) as f:  # '#' comment lines, then the header
-        head = 1
-        for line in f:
-            if not line.startswith("#"):
-                keys = line.strip().split(",")
-                break
-            head += 1
-        else:
+    with open(path) as f:  # '#' comment lines, the header, then one row per exchange
+        lines = (ln for ln in f if not ln.startswith("#"))
+        keys = next(lines, "").strip().split(",")
+        first = next(lines, None)
+        if first is None:
             return None
-    try:  # one row per exchange: numpy's parser, the rows' reader for a file with a cut row
-        sums = np.loadtxt(path, delimiter=",", skiprows=head, ndmin=2).sum(axis=0)
-    except ValueError:
-        rows = read_rows(path)
-        sums = [sum(r[k] for r in rows) for k in keys]
-    if len(keys) < 3 or not np.size(sums):
-        return None
+        try:  # numpy's parser; the rows' reader skips a row a stopped run cut short
+            sums = np.loadtxt(itertools.chain([first], lines), delimiter=",", ndmin=2).sum(axis=0)
+        except ValueError:
+            rows = read_rows(path)
+            if not rows:
+                return None
+            sums = [sum(r[k] for r in rows) for k in keys]
     out = {k: float(v) for k, v in zip(keys, sums) if k not in ("time", "demStep")}
     out["clock_s"] = clock["clock_s"]
     out["fluid_and_rest"] = clock["clock_s"] - sum(v for k, v in out.items() if k != "clock_s")
@@ -200,12 +198,11 @@ def deposit_tail(s):
     body moves the column-top front and not the volume front; None without a profile."""
     if not s.deposit:
         return None
-    path = os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv")
-    front = thickness_front(path, s.L, D_P, column="h_volume_m")
+    front = thickness_front(s.deposit, s.L, D_P, column="h_volume_m")
     x, h = col(s.deposit, "x_m"), col(s.deposit, "h_volume_m")
     total = float(np.nansum(h))
     return {"time_s": float(s.deposit[0]["time_s"]), "volume_front_m": front,
-            "top_front_m": thickness_front(path, s.L, D_P),
+            "top_front_m": thickness_front(s.deposit, s.L, D_P),
             "volume_beyond_volume_front": float(np.nansum(h[x > front]) / total) if total > 0
             else None}
 
@@ -214,7 +211,8 @@ def liquid_over_gate(s):
     """The liquid volume (alpha.liquid x voidfraction x V, m3) beyond the gate (x > L) in the
     column's upper half (y > H/2) at each field write, {time_s: m3}: the liquid that drains over
     the gate's top corner, ahead of the grains, which is where the implicit drag's schemes part
-    first. None without the cell centres and volumes in 0/ (Cx, Cy, V) or a serial field write."""
+    first. None without the cell centres and volumes in 0/ (Cx, Cy, V) or field writes in the
+    case directory (reconstructed, on ranks)."""
     zero = os.path.join(s.dir, "0")
     if not s.done or not all(os.path.isfile(os.path.join(zero, f)) for f in ("Cx", "Cy", "V")):
         return None
@@ -386,7 +384,7 @@ def runout_law(scenes):
         name = s.name
         L = s.summary["sample"]["length_m"]
         a = s.summary["settled"]["height_m"] / L
-        thick = thickness_front(os.path.join(s.dir, "postProcessing", "dem", "depositProfile.csv"), L, D_P)
+        thick = thickness_front(s.deposit, L, D_P)
         rows.append({"scene": name, "a": a, "runout": s.summary["runout_m"] / L, "thick": (thick - L) / L,
                      "stop_reason": s.summary.get("stop_reason"), "end_time_s": s.summary.get("end_time_s")})
     if len(rows) < 2:

@@ -1,7 +1,6 @@
 """The dry runout law (l_inf - L)/L = lambda a^alpha: its fit and the deposit's thickness front
 (mixflow runout-fit, report.py, lube_small_columns.py)."""
 
-import csv
 import math
 
 
@@ -31,10 +30,10 @@ def power_law_slope_error(a, r):
     return math.sqrt(res / (n - 2) / sum((x - mx) ** 2 for x in xs))
 
 
-def thickness_front(profile_csv, L, d, column="h_top_m"):
+def thickness_front(rows, L, d, column="h_top_m"):
     """First bin beyond L whose width-averaged column top (or, with column h_volume_m, whose
-    grain volume as a packed depth) is below one grain: its left edge."""
-    rows = list(csv.DictReader(open(profile_csv)))
+    grain volume as a packed depth) is below one grain: its left edge. ROWS: a deposit profile's
+    (dem/depositProfile.csv, outputs.read_rows)."""
     xs = [float(r["x_m"]) for r in rows]
     dx = xs[1] - xs[0]
     for r, x in zip(rows, xs):

@@ -16,6 +16,7 @@ import os
 import shutil
 import sys
 
+from mixflow.outputs import read_rows
 from mixflow.paper import D_P
 from mixflow.runout import fit_power_law, power_law_slope_error, thickness_front
 
@@ -32,7 +33,8 @@ def main(argv=None):
         s = json.load(open(path))
         L = s["sample"]["length_m"]
         a = s["settled"]["height_m"] / L
-        thick = thickness_front(os.path.join(os.path.dirname(path), "depositProfile.csv"), L, D_P)
+        thick = thickness_front(read_rows(os.path.join(os.path.dirname(path), "depositProfile.csv")),
+                                L, D_P)
         rows.append({"case": s["case"], "H_m": s["sample"]["height_m"], "settled_height_m": s["settled"]["height_m"],
                      "a": a, "runout_m": s["runout_m"], "normalised_runout": s["runout_m"] / L,
                      "runout_thickness_m": thick - L, "normalised_runout_thickness": (thick - L) / L,
