@@ -112,6 +112,19 @@ Schema makeSchema() {
                       "(more friction, looser packing). With packingControl friction the first "
                       "trial's; off: the friction. W&P: 0.1 gives φ = 0.606 at the reference "
                       "tier and 0.629 at the quick tier, 0.7 gives 0.569 and 0.586"),
+          scalarParam("settle.rollingFriction", s.rollingFriction, Range::closed(0.0, 2.0), "",
+                      "**Open choice** (sample preparation): rolling friction coefficient while "
+                      "settling (particles rollingModel; off: no effect). Sliding friction alone "
+                      "does not settle these grains below a bulk fraction of about 0.57 (friction "
+                      "1.7), denser than their critical packing 0.565 (results/critical_packing): "
+                      "a loose (contractant) sample needs rolling friction too. The packing "
+                      "control searches the sliding friction with this held"),
+          scalarParam("settle.sedimentationSpeed", s.sedimentationSpeed, Range::nonNegative(),
+                      "m/s",
+                      "**Open choice** (sample preparation): while settling every grain feels a "
+                      "drag -m g' v / speed (g' the settling gravity, LIGGGHTS fix viscous), so "
+                      "that it falls no faster than this, as grains sedimenting in a liquid do; a "
+                      "gentle deposition with high friction gives a loose sample. 0: free fall"),
           wordParam("settle.packingControl", s.packingControl, {"friction", "off"},
                     "**Open choice** (sample preparation): friction settles the same loose fill "
                     "at trial frictions in [minFriction, maxFriction] (a secant search on "
@@ -186,6 +199,8 @@ void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
                            "maxFriction]; allowed range [" +
                            formatNumber(s.minFriction, 4) + ", " + formatNumber(s.maxFriction, 4) +
                            "] (or packingControl off)");
+  s.rollingFriction = sc.scalar(d, "settle.rollingFriction");
+  s.sedimentationSpeed = sc.scalar(d, "settle.sedimentationSpeed");
   s.maxTime = sc.scalar(d, "settle.maxTime");
   s.kineticTolerance = sc.scalar(d, "settle.kineticTolerance");
   s.fillSpacing = sc.scalar(d, "settle.fillSpacing");

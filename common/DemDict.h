@@ -15,6 +15,12 @@ struct SettleSpec {
   // particle friction while settling behind the gate (sets the packing); with packingControl
   // friction, the first trial's
   double friction = 0.1;
+  // rolling friction while settling (0: none, the default); with high sliding friction it
+  // gives packings looser than sliding friction alone reaches
+  double rollingFriction = 0;
+  // m/s: grains settle against a drag -m g' v / speed (g' the settling gravity), so none falls
+  // faster than this, as grains sedimenting in a liquid; 0: free fall (the default)
+  double sedimentationSpeed = 0;
   // friction: the settling friction is searched in [minFriction, maxFriction], each trial settling
   // the same loose fill, until the sample's solid fraction is within packingTolerance of
   // sample.solidFraction (dem/PackingSearch.h); off: one settle at `friction`.

@@ -170,11 +170,14 @@ SettleReport DemDriver::settleTrial(double friction, const std::optional<SettleC
   double t = 0;
   const double top = placeSettlingGrains(st, from, t);
   // Settling friction sets the packing density (lower friction packs denser). Rolling resistance is
-  // off while settling: a constant rolling torque chatters at rest and keeps the sample from
-  // settling.
-  lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, friction, 0.0));
+  // off while settling unless settle.rollingFriction asks for it (a loose sample): a constant
+  // rolling torque chatters at rest and can keep the sample from settling.
+  lig_->commands(materialCommands(st.particles, st.dem.youngModulusFactor, friction,
+                                  st.settle.rollingFriction));
   lig_->commands(settleGravityCommands(s));
+  lig_->commands(settleDragCommands(s));
   const bool converged = settleUnderGravity(st.timeStepUsed(), top, t, fingerprint, trials);
+  lig_->commands(settleDragOffCommands(s));
   if (s.stiffensSettled()) t += stiffenSettled();
   t += relaxAtRealFriction();
   SettleReport r = measureSample(t, converged);

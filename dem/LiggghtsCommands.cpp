@@ -75,7 +75,8 @@ std::vector<std::string> stiffenCommands(const Scene& s, double timeStep) {
   const ParticleMaterial& p = s.particles;
   if (std::max(s.youngModulusUsed(), s.wallYoungModulusUsed()) > 1e9)
     c.push_back("hard_particles yes");
-  for (auto& m : materialCommands(p, s.dem.youngModulusFactor, s.settle.friction, 0.0))
+  for (auto& m :
+       materialCommands(p, s.dem.youngModulusFactor, s.settle.friction, s.settle.rollingFriction))
     c.push_back(m);
   c.push_back("timestep " + fmt(timeStep));
   return c;
@@ -138,10 +139,27 @@ std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bo
 }
 }  // namespace
 
+namespace {
+bool settlesBuoyant(const Scene& s) { return s.settle.gravity == "buoyant" && s.fluidDensity > 0; }
+}  // namespace
+
 std::vector<std::string> settleGravityCommands(const Scene& s) {
-  if (s.settle.gravity != "buoyant" || s.fluidDensity <= 0) return {};
+  if (!settlesBuoyant(s)) return {};
   const double g = 9.81 * (1.0 - s.fluidDensity / s.particles.density);
   return {"unfix gravi", "fix gravi all gravity " + fmt(g) + " vector 0.0 -1.0 0.0"};
+}
+
+std::vector<std::string> settleDragCommands(const Scene& s) {
+  if (s.settle.sedimentationSpeed <= 0) return {};
+  const double g = 9.81 * (settlesBuoyant(s) ? 1.0 - s.fluidDensity / s.particles.density : 1.0);
+  // fix viscous: F = -gamma v, so the terminal speed m g' / gamma is sedimentationSpeed.
+  return {"fix settleDrag all viscous " +
+          fmt(s.particles.mass() * g / s.settle.sedimentationSpeed)};
+}
+
+std::vector<std::string> settleDragOffCommands(const Scene& s) {
+  if (s.settle.sedimentationSpeed <= 0) return {};
+  return {"unfix settleDrag"};
 }
 
 std::vector<std::string> sceneSetupCommands(const Scene& s, const std::string& dataFile,

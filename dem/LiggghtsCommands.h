@@ -24,6 +24,9 @@ std::string contactSettings(bool limitForce);
 // The settling's gravity (demDict settle.gravity): none for `full` or a dry scene; for `buoyant`
 // in a mixture, gravity replaced by g (1 - rho_f / rho_s).
 std::vector<std::string> settleGravityCommands(const Scene& s);
+// demDict settle.sedimentationSpeed > 0: a drag on every grain while it settles (and its removal).
+std::vector<std::string> settleDragCommands(const Scene& s);
+std::vector<std::string> settleDragOffCommands(const Scene& s);
 
 std::vector<std::string> materialCommands(const ParticleMaterial& p, double youngModulusFactor,
                                           double particleFriction, double rollingFriction);

@@ -60,8 +60,10 @@ std::string settleInputs(const Scene& s) {
               setup.end());
   addLines(out, setup);
   out << "# settling materials\n";
-  addLines(out, materialCommands(st.particles, st.dem.youngModulusFactor, st.settle.friction, 0.0));
+  addLines(out, materialCommands(st.particles, st.dem.youngModulusFactor, st.settle.friction,
+                                 st.settle.rollingFriction));
   addLines(out, settleGravityCommands(st));  // nothing for full gravity: older samples still match
+  addLines(out, settleDragCommands(st));     // nothing without sedimentationSpeed
   // The friction above is the first trial's; the one found is an outcome (settled.state).
   if (s.settle.packingControl == "friction")
     out << "# packing control: settling friction searched from " << s.settle.friction << " in ["

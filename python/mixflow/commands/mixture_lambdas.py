@@ -46,9 +46,19 @@ X_RANGE, Y_RANGE = 3.0, 0.72  # m, from the channel's origin
 
 
 def bin_counts(run_dir, x_range=X_RANGE, y_range=Y_RANGE):
-    """Bins over X_RANGE and Y_RANGE no narrower than the run's fluid cell (cfdDict cellSize)."""
-    cell = float(read_dict(os.path.join(run_dir, "system", "cfdDict"))["cellSize"].split()[0])
-    return max(1, int(x_range / cell + 1e-9)), max(1, int(y_range / cell + 1e-9))
+    """Bins over X_RANGE and Y_RANGE no narrower than the run's fluid cell: the channel cut into
+    round(length / cellSize) cells as mixflowPrepare cuts it (cfdDict cellSize, auto H / 20),
+    the cell mixflowExtract checks the bins against."""
+    cfd = read_dict(os.path.join(run_dir, "system", "cfdDict"))
+    scene = read_dict(os.path.join(run_dir, "constant", "sceneProperties"))
+    size = cfd.get("cellSize", "auto").split()[0]
+    h = float(scene["sample"]["height"]) / 20 if size == "auto" else float(size)
+    counts = []
+    for span, extent in ((x_range, scene["channel"]["length"]), (y_range, scene["channel"]["height"])):
+        extent = float(extent)
+        cell = extent / max(1, int(extent / h + 0.5))  # lround, as mixflowPrepare
+        counts.append(max(1, int(span / cell * (1 + 1e-9))))
+    return tuple(counts)
 
 
 def extract(run_dir, build):
