@@ -305,9 +305,10 @@ def paper_window(items, times=(0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
     return out
 
 
-def settled_fraction(run_dir):
+def settled_fraction(run_dir, key="sampleFraction"):
+    """The settled sample's fraction (dem/settled.state: sampleFraction or bulkFraction)."""
     with open(os.path.join(run_dir, "dem", "settled.state")) as f:
-        return float(re.search(r"sampleFraction\s+([0-9.eE+-]+);", f.read()).group(1))
+        return float(re.search(key + r"\s+([0-9.eE+-]+);", f.read()).group(1))
 
 
 def packing(work, fractions, reference_work):
