@@ -299,6 +299,11 @@ check(p["status"] == "resume" and p.get("extend_to") == 2 * end0 and "endTime ->
 same = suite.Tier("quick")
 same.set_entries([f"controlDict.endTime={end0:g}"])
 check(suite.plan_scene("HB+P", own, same, 1)["status"] == "done", "the same endTime by --set is done")
+check(suite._split_end("demDict.youngModulusFactor=1e-2 couplingProperties.exchangeEvery=10 "
+                       "controlDict.endTime=1") ==
+      suite._split_end("couplingProperties.exchangeEvery=10 controlDict.endTime=1 "
+                       "demDict.youngModulusFactor=1e-2"),
+      "the same --set entries in another order are the same run")
 for sets, what in (([f"controlDict.endTime={0.5 * end0:g}"], "would shorten"),
                    ([f"controlDict.endTime={2 * end0:g}", "couplingProperties.exchangeEvery=3"],
                     "was made with --set")):

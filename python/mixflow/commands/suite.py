@@ -321,21 +321,22 @@ def plan_scene(scene, work, tier, ranks, settled_from=None):
 
 
 def _split_end(set_text):
-    """(the --set items other than controlDict.endTime, its value or None)."""
-    items, end = [], None
+    """(the entries the --set items leave other than controlDict.endTime, {key: value} with the
+    last of a key winning, so that their order does not matter; endTime's value or None)."""
+    entries, end = {}, None
     for item in set_text.split():
         key, value = set_item(item)
         if key == "controlDict.endTime":
             end = value
         else:
-            items.append(item)
-    return items, end
+            entries[key] = value
+    return entries, end
 
 
 def later_end(run_dir, recorded_set, tier):
     """The later endTime asked of RUN_DIR when the --set values differ from those it was made
     with only in controlDict.endTime (a finished or stopped run then goes on to it); None when
-    they are the same. Another difference, or an earlier endTime, is an error."""
+    they are the same, in any order. Another difference, or an earlier endTime, is an error."""
     if recorded_set == tier.set_text:
         return None
     (was, _), (now, end) = _split_end(recorded_set), _split_end(tier.set_text)

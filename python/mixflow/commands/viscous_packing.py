@@ -5,6 +5,7 @@ summary.json (and, with --convergence-summary, the issue's "loose_dense" entry t
 usage: mixflow viscous-packing [--viscosity 4] [--end 3] [--set FILE.ENTRY=VALUE ...]
                                [--loose-set FILE.ENTRY=VALUE ...] [--work runs/yield_stress]
                                [--out results/yield_stress] [--convergence-summary FILE]
+                               [--settled-from WORK]
 
 W+P at the reference tier with the liquid made Newtonian at --viscosity (Pa s; 4 is the paper's
 Bingham liquid's plastic viscosity, Stokes number sqrt(rho_p (rho_p - rho_f) g d^3) / (18 sqrt(2)
@@ -37,11 +38,12 @@ from mixflow.commands.yield_stress_results import observables, settled_fraction
 RUNOUT_RATIO = 2.0  # loose / dense runout, Rondon et al. 2011 (about)
 RATIO_MIN = 1.5  # the check: the loose column runs at least 1.5 x the dense one's runout
 PHI_C = 0.5653  # critical bulk fraction of these grains, results/critical_packing
-# The loose preparation: the grain count of a 0.55 sample, settled once at friction 2 while a drag
-# holds every grain below 0.1 m/s (demDict settle.sedimentationSpeed), as a sedimented bed.
+# The loose preparation: the grain count of a 0.55 sample, settled once at friction 2 with the
+# grains' own rolling friction while a drag holds every grain below 0.1 m/s (demDict
+# settle.sedimentationSpeed), as a sedimented bed: bulk 0.526 at E x 1e-2 (results/critical_packing).
 LOOSE = ("sceneProperties.sample.solidFraction=0.55", "demDict.settle.packingControl=off",
-         "demDict.settle.friction=2", "demDict.settle.sedimentationSpeed=0.1",
-         "demDict.settle.maxTime=8")
+         "demDict.settle.friction=2", "demDict.settle.rollingFriction=0.1",
+         "demDict.settle.sedimentationSpeed=0.1", "demDict.settle.maxTime=8")
 
 
 def run(cmd):
@@ -93,6 +95,9 @@ def main():
     ap.add_argument("--convergence-summary", default=None,
                     help="also write the loose_dense entry of this summary.json")
     ap.add_argument("--np", default="1")
+    ap.add_argument("--settled-from", default=None, metavar="WORK",
+                    help="reuse the samples settled in WORK/viscous-VISCOSITY-{dense,loose} "
+                    "(an earlier --work of this command; mixflow suite --settled-from)")
     a = ap.parse_args()
     common = [x for s in a.set + [f"sceneProperties.liquid.viscosity={a.viscosity}",
                                   f"controlDict.endTime={a.end}"] for x in ("--set", s)]
@@ -107,8 +112,10 @@ def main():
            "runs": {}}
     for name, sets in packings.items():
         work = os.path.join(os.path.abspath(a.work), f"viscous-{a.viscosity}-{name}")
+        reuse = (["--settled-from", os.path.join(os.path.abspath(a.settled_from),
+                                                 os.path.basename(work))] if a.settled_from else [])
         run(command("suite") + ["--tier", "reference", "--scenes", "W+P", "--work", work,
-                                "--np", a.np] + common + sets)
+                                "--np", a.np] + common + sets + reuse)
         run_dir = os.path.join(work, "W+P")
         lam = os.path.join(work, "lambdas.json")
         run(command("mixture-lambdas") + ["--work",
