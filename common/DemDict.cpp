@@ -114,17 +114,20 @@ Schema makeSchema() {
                       "tier and 0.629 at the quick tier, 0.7 gives 0.569 and 0.586"),
           scalarParam("settle.rollingFriction", s.rollingFriction, Range::closed(0.0, 2.0), "",
                       "**Open choice** (sample preparation): rolling friction coefficient while "
-                      "settling (particles rollingModel; off: no effect). Sliding friction alone "
-                      "does not settle these grains below a bulk fraction of about 0.57 (friction "
-                      "1.7), denser than their critical packing 0.565 (results/critical_packing): "
-                      "a loose (contractant) sample needs rolling friction too. The packing "
-                      "control searches the sliding friction with this held"),
+                      "settling (particles rollingModel; off: no effect). With friction 2 and "
+                      "sedimentationSpeed 0.1 m/s the grains' own 0.1 settles W&P's column at a "
+                      "bulk fraction 0.526, loose against the critical 0.565 "
+                      "(results/critical_packing); 0.5 holds an open structure (0.46) that does "
+                      "not come to rest. The packing control searches the sliding friction with "
+                      "this held"),
           scalarParam("settle.sedimentationSpeed", s.sedimentationSpeed, Range::nonNegative(),
                       "m/s",
                       "**Open choice** (sample preparation): while settling every grain feels a "
                       "drag -m g' v / speed (g' the settling gravity, LIGGGHTS fix viscous), so "
-                      "that it falls no faster than this, as grains sedimenting in a liquid do; a "
-                      "gentle deposition with high friction gives a loose sample. 0: free fall"),
+                      "that it falls no faster than this, as grains sedimenting in a liquid do. "
+                      "Free-falling grains compact the pile: sliding friction alone stops at a "
+                      "bulk 0.57 (friction 1-2), with 0.1 m/s and friction 2 it is 0.560. 0: free "
+                      "fall"),
           wordParam("settle.packingControl", s.packingControl, {"friction", "off"},
                     "**Open choice** (sample preparation): friction settles the same loose fill "
                     "at trial frictions in [minFriction, maxFriction] (a secant search on "
