@@ -141,20 +141,23 @@ std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bo
 
 namespace {
 bool settlesBuoyant(const Scene& s) { return s.settle.gravity == "buoyant" && s.fluidDensity > 0; }
+// The gravity the grains settle under: g, or g (1 - rho_f / rho_s) when they settle buoyant.
+double settlingGravity(const Scene& s) {
+  return 9.81 * (settlesBuoyant(s) ? 1.0 - s.fluidDensity / s.particles.density : 1.0);
+}
 }  // namespace
 
 std::vector<std::string> settleGravityCommands(const Scene& s) {
   if (!settlesBuoyant(s)) return {};
-  const double g = 9.81 * (1.0 - s.fluidDensity / s.particles.density);
-  return {"unfix gravi", "fix gravi all gravity " + fmt(g) + " vector 0.0 -1.0 0.0"};
+  return {"unfix gravi",
+          "fix gravi all gravity " + fmt(settlingGravity(s)) + " vector 0.0 -1.0 0.0"};
 }
 
 std::vector<std::string> settleDragCommands(const Scene& s) {
   if (s.settle.sedimentationSpeed <= 0) return {};
-  const double g = 9.81 * (settlesBuoyant(s) ? 1.0 - s.fluidDensity / s.particles.density : 1.0);
   // fix viscous: F = -gamma v, so the terminal speed m g' / gamma is sedimentationSpeed.
   return {"fix settleDrag all viscous " +
-          fmt(s.particles.mass() * g / s.settle.sedimentationSpeed)};
+          fmt(s.particles.mass() * settlingGravity(s) / s.settle.sedimentationSpeed)};
 }
 
 std::vector<std::string> settleDragOffCommands(const Scene& s) {

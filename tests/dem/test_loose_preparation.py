@@ -20,7 +20,6 @@ Checks, each with its tolerance and reason:
 Two settles of about 5 000 grains at E x 1e-3: a few minutes serially.
 """
 import os
-import shutil
 import subprocess
 import sys
 
@@ -40,14 +39,8 @@ def settled(name, sets):
     """cases/W+P at the reference tier with SETS, settled in WORK/NAME: its settled.state."""
     t = suite.Tier(os.path.join(root, "cases", "tiers", "reference"))
     t.set_entries(list(sets))
-    src = os.path.join(root, "cases", "W+P")
-    texts, _ = suite.tier_edits(src, t, "W+P")
     d = os.path.join(work, name)
-    shutil.rmtree(d, ignore_errors=True)
-    shutil.copytree(src, d)
-    for rel, text in texts.items():
-        with open(os.path.join(d, rel), "w") as f:
-            f.write(text)
+    suite.copy_at_tier("W+P", t, d)
     r = subprocess.run([exe, "-case", d, "-settleOnly"], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"mixflowDem -settleOnly failed on {d}:\n{r.stdout[-3000:]}{r.stderr[-2000:]}")

@@ -23,7 +23,6 @@ settle on this machine), so the test costs 2-4 minutes serially.
 """
 import os
 import re
-import shutil
 import subprocess
 import sys
 
@@ -42,14 +41,8 @@ def tier_copy(tier, name, sets=()):
     """ROOT/cases/W+P with ROOT/cases/tiers/TIER set as `mixflow suite` sets it, in WORK/NAME."""
     t = suite.Tier(os.path.join(root, "cases", "tiers", tier))
     t.set_entries(list(sets))
-    src = os.path.join(root, "cases", "W+P")
-    texts, _ = suite.tier_edits(src, t, "W+P")
     d = os.path.join(work, name)
-    shutil.rmtree(d, ignore_errors=True)
-    shutil.copytree(src, d)
-    for rel, text in texts.items():
-        with open(os.path.join(d, rel), "w") as f:
-            f.write(text)
+    suite.copy_at_tier("W+P", t, d)
     return d
 
 

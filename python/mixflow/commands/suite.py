@@ -272,6 +272,14 @@ def make_copy(scene, run_dir, tier, texts, records, content):
         f.write(tier_record(tier, scene, content, records))
 
 
+def copy_at_tier(scene, tier, run_dir):
+    """cases/<scene> set to TIER in RUN_DIR (replaced), as a fresh run of the suite sets it."""
+    src = os.path.join(CASES, scene)
+    texts, records = tier_edits(src, tier, scene)
+    shutil.rmtree(run_dir, ignore_errors=True)
+    make_copy(scene, run_dir, tier, texts, records, scene_content(src))
+
+
 def liquid_restart_time(run_dir, ranks):
     """Latest complete field write of an interrupted liquid run, else None: the one
     resumeLiquidCase continues from (asked of the same shell function, latestLiquidWrite)."""

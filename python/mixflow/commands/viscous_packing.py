@@ -101,8 +101,7 @@ def main():
     a = ap.parse_args()
     common = [x for s in a.set + [f"sceneProperties.liquid.viscosity={a.viscosity}",
                                   f"controlDict.endTime={a.end}"] for x in ("--set", s)]
-    loose = [x for s in (a.loose_set or LOOSE) for x in ("--set", s)]
-    packings = {"dense": [], "loose": loose}
+    packings = {"dense": [], "loose": [x for s in (a.loose_set or LOOSE) for x in ("--set", s)]}
     res = {"viscosity_Pa_s": float(a.viscosity), "set": a.set, "loose_set": list(a.loose_set or LOOSE),
            "tier": "reference", "end_s": a.end, "critical_bulk_fraction": PHI_C,
            "reference": {"source": "Rondon, Pouliquen & Aussillous 2011 (Phys. Fluids 23, 073301)",
