@@ -181,8 +181,11 @@ def stage_times(s):
 
 def deposit_difference(s, ref):
     """Relative L1 difference of two scenes' end profiles h(x) (depositProfile.csv, volume
-    depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles."""
+    depth): sum |h - h_ref| / sum h_ref over the shared bins; None without both profiles or when
+    they are of different times (a ladder value taken on past the others' end)."""
     if not s.deposit or not ref.deposit:
+        return None
+    if abs(float(s.deposit[0]["time_s"]) - float(ref.deposit[0]["time_s"])) > 1e-3:
         return None
     h, h_ref = col(s.deposit, "h_volume_m"), col(ref.deposit, "h_volume_m")
     n = min(len(h), len(h_ref))

@@ -11,7 +11,7 @@ Checks, each exact:
   2. errors: an override naming a block the case lacks names the tier file and the entry; a file
      the case lacks is skipped only when the tier lists it in contentSpecific; an unknown
      top-level tier entry is refused; an unbalanced dictionary is refused;
-  3. every tier (paper, reference, quick, paper-window) applies to every Table 1 scene present in cases/
+  3. every tier (paper, reference, quick, paper-window, truth) applies to every Table 1 scene present in cases/
      without an error, never touches the channel length/height or the sample's L and H, and sets
      what docs/suite.md says for P, W and HB-I;
   4. `suite.py --tier quick --scenes P-I-I --dry-run` prints the plan and writes nothing;
@@ -141,14 +141,19 @@ expect = {("quick", "P"): {"system/demDict": {"youngModulusFactor": "1e-4"},
           ("paper-window", "HB+P"): {"system/demDict": {"youngModulusFactor": "1", "timeStep": "5e-7",
                                                         "settle": {"kineticTolerance": "1e-3"}},
                                      "constant/couplingProperties": {"exchangeEvery": "100"},
-                                     "constant/sceneProperties": {"sample": {"width": "0.12"}}}}
+                                     "constant/sceneProperties": {"sample": {"width": "0.12"}}},
+          ("truth", "B+P"): {"system/demDict": {"youngModulusFactor": "1", "timeStep": "auto",
+                                                "settle": {"stiffenFrom": "1e-1"}},
+                             "constant/couplingProperties": {"exchangeEvery": "3"},
+                             "constant/sceneProperties": {"sample": {"width": "0.12"}}},
+          ("truth", "P"): {"system/demDict": {"youngModulusFactor": "1e-3"}}}
 
 
 def sub(d, want):
     return all(sub(d.get(k, {}), v) if isinstance(v, dict) else d.get(k) == v for k, v in want.items())
 
 
-for name in ("paper", "reference", "quick", "paper-window"):
+for name in ("paper", "reference", "quick", "paper-window", "truth"):
     tier = suite.Tier(name)
     for scene in suite.TABLE1:
         src = os.path.join(ROOT, "cases", scene)

@@ -47,7 +47,8 @@ FILES = {"demDict": "system/demDict", "cfdDict": "system/cfdDict",
 # Mixture files whose every entry has a default (absent: the defaults): --set creates them.
 CREATED_BY_SET = {"bulkProperties", "mixflowProperties"}
 CONTENTS = ("particles", "liquid", "mixture")
-TIER_KEYS = {"FoamFile", "description", "contentSpecific", "scenes"} | set(FILES) | set(CONTENTS)
+TIER_KEYS = ({"FoamFile", "description", "contentSpecific", "settledSamples", "scenes"} | set(FILES)
+             | set(CONTENTS))
 # Time series whose last row is the simulated time reached, by content (first found counts).
 SERIES = {"particles": [outputs.DEM_SERIES], "liquid": [outputs.LIQUID_SERIES],
           "mixture": [outputs.DEM_SERIES, outputs.LIQUID_SERIES]}
@@ -110,6 +111,9 @@ class Tier:
                                     f"(allowed: {', '.join(FILES)})")
         self.description = unquote(d.get("description", ""))
         self.content_specific = set(list_value(d.get("contentSpecific", "()")))
+        # Shipped settled samples (ROOT/<dir>/<scene>/dem) a mixture starts from when they fit.
+        samples = unquote(d.get("settledSamples", ""))
+        self.settled_samples = os.path.join(ROOT, samples) if samples else None
         self.common = {k: v for k, v in d.items() if k in FILES}
         self.by_content = {c: d.get(c, {}) for c in CONTENTS}
         self.scenes = d.get("scenes", {})
@@ -300,10 +304,18 @@ def has_fingerprint(state_path):
         return False
 
 
-def plan_settled(p, settled_from):
+def plan_settled(p, settled_from, shipped=None):
     """Mixture scenes: the settled sample Allrun reuses (its SETTLED_DIR), if any: the one of
-    --settled-from, else, rerunning a copy that failed after settling, its own."""
+    --settled-from, else, rerunning a copy that failed after settling, its own, else for a fresh
+    copy the tier's shipped sample SHIPPED/<scene>/dem if there is one (p["shipped"]: used once
+    the copy shows that it fits, shipped_sample_fits)."""
     if p.get("content") != "mixture" or p["status"] not in ("fresh", "restart"):
+        return
+    if shipped and not settled_from and p["status"] == "fresh":
+        d = os.path.join(shipped, p["scene"], "dem")
+        if os.path.isfile(os.path.join(d, "settled.state")):
+            p["shipped"] = d
+            p["command"] += f" {d} (the tier's shipped sample, if the copy's settling inputs fit it)"
         return
     if settled_from:
         d = os.path.join(settled_from, p["scene"], "dem")
@@ -324,8 +336,17 @@ def plan_scene(scene, work, tier, ranks, settled_from=None):
     existing copy from its start), done, missing (no case) or error (with the message). A mixture
     scene reuses a settled sample (plan_settled) when one can be."""
     p = _plan_scene(scene, work, tier, ranks)
-    plan_settled(p, settled_from)
+    plan_settled(p, settled_from, tier.settled_samples)
     return p
+
+
+def shipped_sample_fits(run_dir, sample):
+    """(True, '') if the copy RUN_DIR can start from the shipped SAMPLE (mixflowDem -check
+    -settleOnly -reuse: the same settling inputs by fingerprint), else (False, its reason)."""
+    r = subprocess.run(["mixflowDem", "-case", ".", "-check", "-settleOnly", "-reuse", sample],
+                       cwd=run_dir, env=run_env(), capture_output=True, text=True)
+    lines = (r.stderr or r.stdout).strip().splitlines()
+    return r.returncode == 0, (lines[-1] if lines else f"exit status {r.returncode}")
 
 
 def _split_end(set_text):
@@ -497,6 +518,13 @@ def extend_run(run_dir, tier, end):
 def run_scene(p, tier, ranks, label, progress_every, samples=None, poll=1.0):
     if p["status"] == "fresh":
         make_copy(p["scene"], p["run_dir"], tier, p["texts"], p["records"], p["content"])
+        if p.get("shipped"):
+            fits, why = shipped_sample_fits(p["run_dir"], p["shipped"])
+            if fits:
+                p["settled"] = p["shipped"]
+            else:
+                print(f"{label}: settling: the shipped sample {p['shipped']} does not fit "
+                      f"this copy ({why})", flush=True)
     if p.get("extend_to") is not None:
         extend_run(p["run_dir"], tier, p["extend_to"])
     for name in (".failed",):
