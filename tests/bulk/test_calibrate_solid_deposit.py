@@ -127,6 +127,11 @@ def main():
     scores = {(g["tan_phi"], g["viscosity_m2_s"]): g["score"] for g in res.get("grid", [])}
     check(abs(scores.get(A, 1) - A_ERROR) < 1e-12 and abs(scores.get(B, 1) - 0.02) < 1e-12,
           f"front+deposit scores hypot(rms, deposit): A {scores.get(A)}, B {scores.get(B)}")
+    by = res.get("best_by_score", {})
+    check(by.get("front", {}).get("tan_phi") == A[0] and by.get("front", {}).get("score") == 0
+          and by.get("front+deposit", {}).get("tan_phi") == B[0]
+          and abs(by.get("front+deposit", {}).get("score", 1) - 0.02) < 1e-12,
+          f"best_by_score: A by the front (score 0), B by front+deposit (0.02): {by}")
     check("tanPhi 0.6" in open(bp).read(), "the target takes B's tanPhi 0.6")
     with open(os.path.splitext(out)[0] + ".csv") as f:
         head = f.readline().strip().split(",")

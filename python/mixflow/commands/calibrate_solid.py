@@ -177,9 +177,10 @@ def score(case, ref, times, ref_deposit, how):
     return rec, dep
 
 
-def summary(rec):
-    return {k: rec[k] for k in ("tan_phi", "viscosity_m2_s", "rms_error", "final_error",
-                                "deposit_error", "back_wall_m", "score")}
+def summary(rec, how):
+    """REC's errors and its score HOW (a key of SCORES)."""
+    return dict({k: rec[k] for k in ("tan_phi", "viscosity_m2_s", "rms_error", "final_error",
+                                     "deposit_error", "back_wall_m")}, score=combined(rec, how))
 
 
 def fmt(v):
@@ -257,8 +258,8 @@ def main():
            "rheology": a.rheology, "score": a.score, "score_definition": SCORES[a.score],
            "deposit_error_definition": "sum |h_bulk - h_dem| / sum h_dem over the bulk cell "
                                        "columns, h_dem the DEM h_volume_m averaged over each",
-           "best": summary(best),
-           "best_by_score": {how: summary(min(grid, key=lambda r: combined(r, how)))
+           "best": summary(best, a.score),
+           "best_by_score": {how: summary(min(grid, key=lambda r: combined(r, how)), how)
                              for how in SCORES if how == "front" or ref_deposit},
            "grid": grid}
     outputs.write_json(a.out, out)
