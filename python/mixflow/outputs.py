@@ -91,6 +91,11 @@ TIME = "time_s"
 GRANULAR_FRONT = "front_x_m"  # DEM_SERIES
 LIQUID_FRONT = "front_bed_m"  # LIQUID_SERIES: largest x where the bed cell row holds alpha >= 0.5
 SECTION_FROUDE = "section_froude"  # LIQUID_SERIES: Fr at paper.SECTION_X (nan below minDepth)
+PROFILE_X = "x_m"  # LIQUID_PROFILES and DEPOSIT: the cell column's or the bin's centre
+PROFILE_DEPTH = "depth_m"  # LIQUID_PROFILES: liquid (bulk model: mixture) volume / column area
+PROFILE_SURFACE = "surface_m"  # LIQUID_PROFILES: the same with the pores counted full
+DEPOSIT_TOP = "h_top_m"  # DEPOSIT: the mean top of the bin's 2 d wide columns of grains
+DEPOSIT_VOLUME = "h_volume_m"  # DEPOSIT: grain volume / (sample solidFraction x W x bin length)
 
 
 def is_time_dir(name):
@@ -154,6 +159,19 @@ def read_rows(path):
                 row[k] = math.nan if v == "" else v  # a blank cell: no value at that time
         rows.append(row)
     return rows
+
+
+def profile_at(case, t):
+    """The rows of CASE's LIQUID_PROFILES (read_rows) at the write time nearest T (the first of
+    two as near), in the file's order (x increasing)."""
+    rows = read_rows(os.path.join(case, LIQUID_PROFILES))
+    tn = min({r[TIME] for r in rows}, key=lambda v: (abs(v - t), v))
+    return [r for r in rows if r[TIME] == tn]
+
+
+def deposit(case):
+    """The rows of CASE's DEPOSIT (read_rows): the final h(x) of a DEM run, x increasing."""
+    return read_rows(os.path.join(case, DEPOSIT))
 
 
 # A run stops up to a DEM step short of its endTime: its last row then stands for a time at most

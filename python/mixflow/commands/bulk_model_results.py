@@ -40,10 +40,8 @@ PROFILE_TIMES = (0.5, 1.0, 3.0)
 
 def profile(case, t):
     """(x, surface) of the liquid profiles.csv row set nearest to T."""
-    rows = outputs.read_rows(os.path.join(case, outputs.LIQUID_PROFILES))
-    tn = min({r[outputs.TIME] for r in rows}, key=lambda v: abs(v - t))
-    sel = [r for r in rows if r[outputs.TIME] == tn]
-    return [r["x_m"] for r in sel], [r["surface_m"] for r in sel]
+    sel = outputs.profile_at(case, t)
+    return [r[outputs.PROFILE_X] for r in sel], [r[outputs.PROFILE_SURFACE] for r in sel]
 
 
 def bulk_velocity(case, x, t):
@@ -211,8 +209,8 @@ def main():
         for k, t in enumerate(PROFILE_TIMES):
             ax.plot(*profile(ref, t), "-", color=f"C{k}", label=f"CFD-DEM liquid, {t:g} s")
             ax.plot(*profile(bulk, t), "--", color=f"C{k}", label=f"bulk mixture, {t:g} s")
-        dep = outputs.read_rows(os.path.join(ref, outputs.DEPOSIT))
-        ax.plot([r["x_m"] for r in dep], [r["h_top_m"] for r in dep], "k:",
+        dep = outputs.deposit(ref)
+        ax.plot([r[outputs.PROFILE_X] for r in dep], [r[outputs.DEPOSIT_TOP] for r in dep], "k:",
                 label="CFD-DEM grains at the end")
         ax.set_title(name)
         ax.set_xlim(0, 3.5)
