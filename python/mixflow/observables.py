@@ -14,7 +14,7 @@ import numpy as np
 from .foamcase import execution_time, execution_times, read_internal_field, time_dirs
 from .foamdict import read_dict
 from .froude import first_time, subcritical_after_arrival
-from .outputs import STAGE_TIMES, interpolated as at, read_rows
+from .outputs import END_TOLERANCE_S, STAGE_TIMES, interpolated as at, read_rows
 from .paper import D_P, DRY_SERIES, G, PAPER_NAME
 from .runout import fit_power_law, power_law_slope_error, thickness_front
 
@@ -185,7 +185,7 @@ def deposit_difference(s, ref):
     they are of different times (a ladder value taken on past the others' end)."""
     if not s.deposit or not ref.deposit:
         return None
-    if abs(float(s.deposit[0]["time_s"]) - float(ref.deposit[0]["time_s"])) > 1e-3:
+    if abs(float(s.deposit[0]["time_s"]) - float(ref.deposit[0]["time_s"])) > END_TOLERANCE_S:
         return None
     h, h_ref = col(s.deposit, "h_volume_m"), col(ref.deposit, "h_volume_m")
     n = min(len(h), len(h_ref))

@@ -36,10 +36,11 @@ import json
 import os
 import sys
 
-from mixflow import ROOT
+from mixflow import ROOT, schema
 from mixflow import observables as obs
 from mixflow.cli import command
-from mixflow.foamdict import read_dict
+from mixflow.commands import suite
+from mixflow.paper import MIXTURES
 from mixflow.commands.tier_trade import observables
 from mixflow.timing import recorded_run
 
@@ -151,22 +152,40 @@ def collect(args):
             **({"against": args.against, "change_against_base": against} if args.against else {})}
 
 
+# The truth tier's settings summary.json names: (key, case file, entry, type).
+TRUTH_SETTINGS = (("youngModulusFactor", "demDict", "youngModulusFactor", float),
+                  ("exchangeEvery", "couplingProperties", "exchangeEvery", int),
+                  ("cellSize", "cfdDict", "cellSize", float),
+                  ("interpolation", "couplingProperties", "interpolation", str),
+                  ("viscosityCap", "sceneProperties", "liquid.viscosityCap", float))
+
+
 def truth_tier(ladders):
-    """The truth tier (cases/tiers/truth) with, per scene, whether halving its exchange interval
-    at its stiffness keeps every observable within the rule (the TRUTH_LADDER ladder: None where it
-    has not run). The ladders at softer stiffnesses and longer intervals that moved by more than
-    the rule are why this tier is the paper's stiffness (results/convergence/README.md)."""
-    d = read_dict(os.path.join(ROOT, "cases", "tiers", "truth"))["mixture"]
+    """The truth tier (cases/tiers/truth): its settings as each mixture's case takes them (the
+    tier's entry, else the case's, else the declared default; one value where the mixtures
+    agree), and per scene whether halving its exchange interval at its stiffness keeps every
+    observable within the rule (the TRUTH_LADDER ladder: None where it has not run). The ladders at
+    softer stiffnesses and longer intervals that moved by more than the rule are why this tier is
+    the paper's stiffness (results/convergence/README.md)."""
+    tier = suite.Tier("truth")
+    per_scene = {}
+    for scene in MIXTURES:
+        src = os.path.join(suite.CASES, scene)
+        texts, _ = suite.tier_edits(src, tier, scene)
+        row = {}
+        for key, fkey, entry, cast in TRUTH_SETTINGS:
+            v = schema.value(suite.tier_file_tree(src, texts, fkey), suite.FILES[fkey], entry)
+            row[key] = cast(float(v)) if cast is int else cast(v)  # int of "3" or 3.0
+        per_scene[scene] = row
+    out = {"tier": os.path.relpath(tier.path, ROOT)}
+    for key, *_ in TRUTH_SETTINGS:
+        values = {sc: s[key] for sc, s in per_scene.items()}
+        out[key] = next(iter(values.values())) if len(set(values.values())) == 1 else values
     lad = ladders.get(TRUTH_LADDER, {})
-    return {"tier": "cases/tiers/truth",
-            "youngModulusFactor": float(d["demDict"]["youngModulusFactor"]),
-            "exchangeEvery": int(d["couplingProperties"]["exchangeEvery"]),
-            "cellSize": float(d["cfdDict"]["cellSize"]),
-            "interpolation": "cell", "viscosityCap": 1e4,  # the cases' couplingProperties, liquids
-            "interval_ladder": TRUTH_LADDER,
-            "interval_converged": {sc: lad[sc]["converged"] if sc in lad else None
-                                   for sc in ("W+P", "HB+P", "B+P")},
-            "interval_compared_to_s": {sc: lad[sc]["end_s"] for sc in lad}}
+    return dict(out, interval_ladder=TRUTH_LADDER,
+                interval_converged={sc: lad[sc]["converged"] if sc in lad else None
+                                    for sc in MIXTURES},
+                interval_compared_to_s={sc: lad[sc]["end_s"] for sc in lad})
 
 
 def main(argv=None):

@@ -341,8 +341,9 @@ def plan_scene(scene, work, tier, ranks, settled_from=None):
 
 
 def shipped_sample_fits(run_dir, sample):
-    """(True, '') if the copy RUN_DIR can start from the shipped SAMPLE (mixflowDem -check
-    -settleOnly -reuse: the same settling inputs by fingerprint), else (False, its reason)."""
+    """(fits, mixflowDem's last line): whether the copy RUN_DIR can start from the shipped SAMPLE
+    (mixflowDem -check -settleOnly -reuse: the same settling inputs by fingerprint), and what it
+    said (the match, or the first entry that differs)."""
     r = subprocess.run(["mixflowDem", "-case", ".", "-check", "-settleOnly", "-reuse", sample],
                        cwd=run_dir, env=run_env(), capture_output=True, text=True)
     lines = (r.stderr or r.stdout).strip().splitlines()
@@ -548,14 +549,20 @@ def run_scene(p, tier, ranks, label, progress_every, samples=None, poll=1.0):
 # --------------------------------------------------------------------------------------------
 # Cost of a tier: measured on one scene per content, extrapolated to every scene
 
+def tier_file_tree(case_dir, texts, fkey):
+    """The parsed file FKEY (a key of FILES) of the case in CASE_DIR as the tier leaves it: the
+    edited text of TEXTS (tier_edits) if the tier changed it, else the case's own ({} if absent)."""
+    rel = FILES[fkey]
+    if rel in texts:
+        return parse_dict(texts[rel])
+    path = os.path.join(case_dir, rel)
+    return read_dict(path) if os.path.isfile(path) else {}
+
+
 def scene_size(case_dir, texts, content):
     """(particles, fluid cells, H) of the case as the tier leaves it."""
     def d(fkey):
-        rel = FILES[fkey]
-        if rel in texts:
-            return parse_dict(texts[rel])
-        path = os.path.join(case_dir, rel)
-        return read_dict(path) if os.path.isfile(path) else {}
+        return tier_file_tree(case_dir, texts, fkey)
     sp = d("sceneProperties")
     L, H, W = (float(sp["sample"][k]) for k in ("length", "height", "width"))
     particles = cells = None
