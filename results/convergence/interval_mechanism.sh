@@ -4,7 +4,8 @@
 # exchangeEvery, one coupling or liquid choice changed per variant. Writes WORK/<variant>/<N>/ and
 # results/convergence/interval_mechanism.csv (energy released by the grains, granular front, their
 # kinetic energy at 0.5 s). Usage: interval_mechanism.sh [WORK] (default runs/interval_mechanism).
-# About 35 min serially on this machine's 2 cores.
+# About 35 min serially on this machine's 2 cores. Every run takes the plain void-fraction split
+# (dividedCoeffs smoothing 0), whose eps_f jumps are what these variants measured (void_jumps.sh).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/interval_mechanism}")
@@ -23,7 +24,7 @@ run() {  # variant liquid N [--couple ENTRY=VALUE | --cfd ENTRY=VALUE ...]
   rm -rf "$w" && mkdir -p "$(dirname "$w")"
   /usr/bin/python3 "$root/tests/coupling/run_mixture_case.py" --root "$root" \
     --bindir "${MIXFLOW_BUILD:-$root/build}/bin" --workdir "$w" --liquid-case "$liquid" \
-    --end 0.5 --couple exchangeEvery="$n" "$@" >"$w.log" 2>&1
+    --end 0.5 --couple exchangeEvery="$n" --couple dividedCoeffs.smoothing=0 "$@" >"$w.log" 2>&1
   touch "$w/done"
 }
 for n in 25 12 6 3 2 1; do run held HB+P $n; done
@@ -44,24 +45,5 @@ done
 # The Bingham mixture (B+P's liquid: yield stress 2.1 Pa, 4 Pa s) with both schemes.
 for n in 25 6 2 1; do run bp_held B+P $n; done
 for n in 25 6 2 1; do run bp_share B+P $n --couple dragFluidResponse=share; done
-/usr/bin/python3 - "$work" "$root/results/convergence/interval_mechanism.csv" <<'END'
-import csv, glob, os, sys
-work, out = sys.argv[1:]
-rows = []
-for series in sorted(glob.glob(os.path.join(work, "*", "*", "W+P-quick", "postProcessing", "dem",
-                                            "timeSeries.csv"))):
-    parts = series[len(work) + 1:].split(os.sep)
-    r = list(csv.DictReader(open(series)))
-    end = min(r, key=lambda x: abs(float(x["time_s"]) - 0.5))
-    rows.append({"variant": parts[0], "exchangeEvery": int(parts[1]),
-                 "time_s": round(float(end["time_s"]), 4),
-                 "released_J": round(float(r[0]["pe_J"]) - float(end["pe_J"]), 4),
-                 "front_m": round(float(end["front_x_m"]), 4),
-                 "ke_J": round(float(end["ke_translational_J"]), 4)})
-rows.sort(key=lambda x: (x["variant"], -x["exchangeEvery"]))
-with open(out, "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=list(rows[0]))
-    w.writeheader()
-    w.writerows(rows)
-print(out, len(rows), "rows")
-END
+/usr/bin/python3 "$root/results/convergence/quick_ladder_csv.py" "$work" \
+  "$root/results/convergence/interval_mechanism.csv"

@@ -25,7 +25,7 @@ Asserts (tolerances and why):
 With --dem contactSnapshots=on the coupled run writes its contact snapshots (dem/ContactDumps.h)
 and the extraction takes the stress along the contact lines (HDF5 attribute stress_source).
 With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
-(couplingProperties entries) and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the
+(couplingProperties entries; BLOCK.ENTRY=VALUE inside a block, e.g. dividedCoeffs.smoothing=0) and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the
 same checks run on that variant; --grain-energy-max E also
 asserts the grains' energy budget: their kinetic energy never exceeds the potential energy they
 have released by more than E joules (a closed collapse only dissipates; E covers the elastic
@@ -127,7 +127,13 @@ def main():
         given = foamdict.read_dict(path)
         for kv in entries:
             key, value = kv.split("=", 1)
-            if key in given:
+            if "." in key:  # BLOCK.ENTRY=VALUE: set or insert inside the block (created if absent)
+                *blocks, leaf = key.split(".")
+                tree = {leaf: value}
+                for b in reversed(blocks):
+                    tree = {b: tree}
+                foamdict.edit_file(path, tree, create_blocks=True)
+            elif key in given:
                 fc.set_entry(path, key, value)
             else:
                 with open(path, "a") as f:

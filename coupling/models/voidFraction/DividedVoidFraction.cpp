@@ -12,8 +12,8 @@
 // Face smoothing (dividedCoeffs smoothing s, a fraction of the particle radius; default 0 = off).
 // Without it eps_f jumps by a whole point's weight (1/48 of the particle) when a point crosses a
 // face, however slowly the particle moves: over an exchange interval T that is a rate d(eps)/dt of
-// (V_p / 48 / V_c) / T, which the pressure equation of a packed bed turns into MPa spikes at the
-// paper's stiffness and T = 12.5 us (coupling/README.md, "Void fraction jumps"). With smoothing, a
+// (V_p / 48 / V_c) / T, a kick to the pore liquid that grows as 1/T, so the mixtures' answers
+// move with T (docs/parameters.md, "Void fraction face smoothing"). With smoothing, a
 // point within the band b = s r of a face to another local cell shares its weight with that cell,
 // linearly in its distance d: f = (b - d) / (2 b), half each on the face. eps_f is then continuous
 // in the particle positions, so d(eps)/dt is bounded by the particles' speed over b, whatever T.

@@ -49,7 +49,7 @@ ENERGY_TOL = 0.05  # relative, released energy
 FRONT_TOL = 0.05  # m, granular and liquid fronts
 FRONTS = ("granular_front_m", "liquid_front_m")
 ENERGY = "particle_pe_released_J_per_m"
-TRUTH_LADDER = "interval_E1"  # the truth tier's interval halving (every 3 against every DEM step)
+TRUTH_LADDER = "interval_E1_smoothed"  # the truth tier's halving: every 3 against every DEM step
 
 
 def within(row, ref):
@@ -157,6 +157,7 @@ TRUTH_SETTINGS = (("youngModulusFactor", "demDict", "youngModulusFactor", float)
                   ("exchangeEvery", "couplingProperties", "exchangeEvery", int),
                   ("cellSize", "cfdDict", "cellSize", float),
                   ("interpolation", "couplingProperties", "interpolation", str),
+                  ("voidSmoothing", "couplingProperties", "dividedCoeffs.smoothing", float),
                   ("viscosityCap", "sceneProperties", "liquid.viscosityCap", float))
 
 

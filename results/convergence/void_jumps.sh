@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# The void fraction's jumps against the exchange interval: the quick HB&P and B&P (cases/W+P-quick
+# with HB+P's or B+P's liquid, E x 1e-3, DEM step 3.9e-5 s, 0.5 s) at several exchangeEvery with
+# the plain divided split (dividedCoeffs smoothing 0) and with the face smoothing the case sets
+# (0.5), and the smoothing width at 2 DEM steps. Writes WORK/<variant>/<N>/ and
+# results/convergence/void_jumps.csv (energy released by the grains, granular front, their kinetic
+# energy at 0.5 s). Usage: void_jumps.sh [WORK] (default runs/void_jumps). About 30 min of one core.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+work=$(realpath -m "${1:-$root/runs/void_jumps}")
+run() {  # variant liquid-case N smoothing
+  local variant=$1 liquid=$2 n=$3 s=$4 w="$work/$1/$3"
+  [ -f "$w/done" ] && return
+  rm -rf "$w" && mkdir -p "$(dirname "$w")"
+  /usr/bin/python3 "$root/tests/coupling/run_mixture_case.py" --root "$root" \
+    --bindir "${MIXFLOW_BUILD:-$root/build}/bin" --workdir "$w" --liquid-case "$liquid" \
+    --end 0.5 --couple exchangeEvery="$n" --couple dividedCoeffs.smoothing="$s" >"$w.log" 2>&1
+  touch "$w/done"
+}
+for n in 25 6 2 1; do
+  run hb_plain HB+P $n 0
+  run hb_smoothed HB+P $n 0.5
+  run bp_plain B+P $n 0
+  run bp_smoothed B+P $n 0.5
+done
+run hb_smoothing0.25 HB+P 2 0.25
+run hb_smoothing1 HB+P 2 1
+/usr/bin/python3 "$root/results/convergence/quick_ladder_csv.py" "$work" \
+  "$root/results/convergence/void_jumps.csv"
