@@ -1,5 +1,6 @@
 """The quick-scene ladders' table: WORK/<variant>/<exchangeEvery>/W+P-quick runs to one CSV row each
-(energy released by the grains, granular front and their kinetic energy at 0.5 s).
+(energy released by the grains, granular front and their kinetic energy at 0.5 s, and whether
+the run passed run_mixture_case.py's conservation checks: a run marked checks_failed did not).
 Usage: quick_ladder_csv.py WORK OUT.csv (interval_mechanism.sh, void_jumps.sh)."""
 import csv
 import glob
@@ -21,7 +22,9 @@ def main(work, out):
                      "time_s": round(float(end["time_s"]), 4),
                      "released_J": round(float(r[0]["pe_J"]) - float(end["pe_J"]), 4),
                      "front_m": round(float(end["front_x_m"]), 4),
-                     "ke_J": round(float(end["ke_translational_J"]), 4)})
+                     "ke_J": round(float(end["ke_translational_J"]), 4),
+                     "checks": "failed" if os.path.exists(os.path.join(
+                         work, variant, n, "checks_failed")) else "passed"})
     rows.sort(key=lambda x: (x["variant"], -x["exchangeEvery"]))
     with open(out, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
