@@ -25,8 +25,9 @@ Asserts (tolerances and why):
 With --dem contactSnapshots=on the coupled run writes its contact snapshots (dem/ContactDumps.h)
 and the extraction takes the stress along the contact lines (HDF5 attribute stress_source).
 With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
-(couplingProperties entries; BLOCK.ENTRY=VALUE inside a block, e.g. dividedCoeffs.smoothing=0) and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the
-same checks run on that variant; --grain-energy-max E also
+(couplingProperties entries; BLOCK.ENTRY=VALUE inside a block, e.g. dividedCoeffs.smoothing=0)
+and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the same checks run on that
+variant; --grain-energy-max E also
 asserts the grains' energy budget: their kinetic energy never exceeds the potential energy they
 have released by more than E joules (a closed collapse only dissipates; E covers the elastic
 energy of the settled contacts that the restart releases).

@@ -267,10 +267,8 @@ for name, (kind, column) in QUANTITIES.items():
 if ranks == "1":
     ah, bh = make("a_held", 0.065), make("b_held", 0.065)
     for d in (ah, bh):
-        coupling = os.path.join(d, "constant", "couplingProperties")
-        with open(coupling, "a") as f:
-            f.write("dragIntegration held;\n")
-        foamdict.edit_file(coupling, {"dividedCoeffs": {"smoothing": "0"}}, create_blocks=True)
+        foamdict.edit_file(os.path.join(d, "constant", "couplingProperties"),
+                           {"dragIntegration": "held", "dividedCoeffs": {"smoothing": "0"}})
     rc, out = run(["./Allrun", ranks, os.path.join(a, "dem")], ah)
     rc_b, _ = run_killed(bh, os.path.join(a, "dem"), 0.05)
     t_h = state_time(bh)
