@@ -144,7 +144,7 @@ expect = {("quick", "P"): {"system/demDict": {"youngModulusFactor": "1e-4"},
                                      "constant/sceneProperties": {"sample": {"width": "0.12"}}},
           ("truth", "B+P"): {"system/demDict": {"youngModulusFactor": "1", "timeStep": "auto",
                                                 "settle": {"stiffenFrom": "1e-1"}},
-                             "constant/couplingProperties": {"exchangeEvery": "3"},
+                             "constant/couplingProperties": {"exchangeEvery": "27"},
                              "constant/sceneProperties": {"sample": {"width": "0.12"}}},
           ("truth", "P"): {"system/demDict": {"youngModulusFactor": "1e-3"}}}
 

@@ -49,7 +49,7 @@ ENERGY_TOL = 0.05  # relative, released energy
 FRONT_TOL = 0.05  # m, granular and liquid fronts
 FRONTS = ("granular_front_m", "liquid_front_m")
 ENERGY = "particle_pe_released_J_per_m"
-TRUTH_LADDER = "interval_E1_smoothed"  # the truth tier's halving: every 3 against every DEM step
+TRUTH_LADDER = "interval_E1_smoothed"  # the truth tier's intervals against every DEM step
 
 
 def within(row, ref):
@@ -167,8 +167,9 @@ TRUTH_SETTINGS = (("youngModulusFactor", "demDict", "youngModulusFactor", float)
 def truth_tier(ladders):
     """The truth tier (cases/tiers/truth): its settings as each mixture's case takes them (the
     tier's entry, else the case's, else the declared default; one value where the mixtures
-    agree), and per scene whether halving its exchange interval at its stiffness keeps every
-    observable within the rule (the TRUTH_LADDER ladder: None where it has not run). The ladders at
+    agree), and per scene whether its exchange interval keeps every observable within the rule of
+    an exchange every DEM step at its stiffness (the TRUTH_LADDER ladder: None where the ladder
+    lacks either value). The ladders at
     softer stiffnesses and longer intervals that moved by more than the rule are why this tier is
     the paper's stiffness (results/convergence/README.md)."""
     tier = suite.Tier("truth")
@@ -186,9 +187,14 @@ def truth_tier(ladders):
         values = {sc: s[key] for sc, s in per_scene.items()}
         out[key] = next(iter(values.values())) if len(set(values.values())) == 1 else values
     lad = ladders.get(TRUTH_LADDER, {})
+
+    def tier_within_finest(sc):
+        rows = lad.get(sc, {}).get("values", {})
+        mine, finest = rows.get(str(per_scene[sc]["exchangeEvery"])), rows.get(lad.get(sc, {}).get("finest"))
+        return within(mine, finest) if mine and finest else None
+
     return dict(out, interval_ladder=TRUTH_LADDER,
-                interval_converged={sc: lad[sc]["converged"] if sc in lad else None
-                                    for sc in MIXTURES},
+                interval_converged={sc: tier_within_finest(sc) for sc in MIXTURES},
                 interval_compared_to_s={sc: lad[sc]["end_s"] for sc in lad})
 
 
@@ -227,7 +233,9 @@ def main(argv=None):
         with open(summary_file) as f:
             summary = json.load(f)
     ladder = collect(args)
-    ladder["command"] = " ".join(["mixflow convergence"] + (argv or sys.argv[1:]))
+    # The command that makes the ladder: --report-only only re-reads the runs it made.
+    ladder["command"] = " ".join(["mixflow convergence"]
+                                 + [a for a in (argv or sys.argv[1:]) if a != "--report-only"])
     summary.setdefault("ladders", {}).setdefault(args.label, {})[args.scene] = ladder
     # A scene is converged once every ladder of it is; a one-value ladder (a noise-floor run
     # beside a ladder's value) is no ladder.
