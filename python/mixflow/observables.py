@@ -8,6 +8,7 @@ import itertools
 import json
 import math
 import os
+import sys
 
 import numpy as np
 
@@ -73,6 +74,17 @@ class Scene:
             if rows:
                 return rows[-1]["time_s"]
         return None
+
+
+def first_finished(works, name):
+    """Scene NAME from the first work directory where it finished, else from the first; one whose
+    outputs cannot be read is reported and counts as not run."""
+    try:
+        found = [w for w in works if os.path.isfile(os.path.join(w, name, ".done"))]
+        return Scene((found or works)[0], name)
+    except Exception as e:  # noqa: BLE001  one unreadable scene never stops a report
+        print(f"{name}: cannot read its outputs: {e}", file=sys.stderr)
+        return Scene("/nonexistent", name)
 
 
 def vtk_series(case_dir):

@@ -25,7 +25,8 @@ Asserts (tolerances and why):
 With --dem contactSnapshots=on the coupled run writes its contact snapshots (dem/ContactDumps.h)
 and the extraction takes the stress along the contact lines (HDF5 attribute stress_source).
 With --liquid-case (another case's liquid, e.g. HB+P's Herschel-Bulkley) and --couple ENTRY=VALUE
-(couplingProperties entries; BLOCK.ENTRY=VALUE inside a block, e.g. dividedCoeffs.smoothing=0)
+(couplingProperties entries; BLOCK.ENTRY=VALUE inside a block, e.g. dividedCoeffs.smoothing=0),
+--scene ENTRY=VALUE (sceneProperties entries, e.g. liquid.yieldStress=0)
 and --drag-viscosity CLOSURE (DiFeliceDragCoeffs dragViscosity), the same checks run on that
 variant; --grain-energy-max E also
 asserts the grains' energy budget: their kinetic energy never exceeds the potential energy they
@@ -92,6 +93,8 @@ def main():
     ap.add_argument("--liquid-case", help="take the liquid block of cases/NAME's sceneProperties")
     ap.add_argument("--couple", action="append", default=[], metavar="ENTRY=VALUE",
                     help="a couplingProperties entry of the run (repeatable)")
+    ap.add_argument("--scene", action="append", default=[], metavar="ENTRY=VALUE",
+                    help="sceneProperties entries (BLOCK.ENTRY=VALUE inside a block), after --liquid-case")
     ap.add_argument("--drag-viscosity", help="DiFeliceDragCoeffs dragViscosity of the run")
     ap.add_argument("--cfd", action="append", default=[], metavar="ENTRY=VALUE",
                     help="system/cfdDict entry of the run (added, or changed if the case has it)")
@@ -142,6 +145,7 @@ def main():
                     f.write(f"{key} {value}{end}   // test option\n")
     coupling = os.path.join(case, "constant", "couplingProperties")
     set_entries(coupling, a.couple)
+    set_entries(os.path.join(case, "constant", "sceneProperties"), a.scene)
     set_entries(os.path.join(case, "system", "cfdDict"), a.cfd)
     set_entries(os.path.join(case, "system", "demDict"), a.dem)
     with open(coupling, "a") as f:
@@ -265,7 +269,7 @@ def main():
         nw = h["windows/t0"].shape[0]
         nx, ny = h["grid/x_edges"].shape[0] - 1, h["grid/y_edges"].shape[0] - 1
         print(f"mixture.h5: {nw} windows, {ny} x {nx} bins")
-        ok &= nw == round(a.end / 0.1) and (nx, ny) == (NX, NY)
+        ok &= nw == math.ceil(a.end / 0.1 - 1e-6) and (nx, ny) == (NX, NY)
         expect_units = {"alpha_s": "1", "u_s": "m/s", "u_f": "m/s", "p_f": "Pa", "p_s": "Pa",
                         "lambda_u": "1"}
         for name, unit in expect_units.items():

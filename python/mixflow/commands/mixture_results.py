@@ -1,7 +1,13 @@
 """results/mixtures/: fronts, Froude and Savage numbers of the three mixture scenes from a
 suite work directory, and summary.json with the paper's numbers beside ours.
 
-    mixflow mixture-results [--work runs/reference] [--out results/mixtures]
+    mixflow mixture-results [--work runs/reference] [--out results/mixtures] [--partner WORK]
+
+--work and --partner take several directories, comma-separated: each scene is read from the
+first where it finished. --partner holds the same scenes with one speed knob one step finer (for
+the truth tier: the exchange interval); each scene's observables then carry their convergence
+error, the partner's value minus this one's (summary.json: scenes.<scene>.observables and
+.convergence_error).
 
 Rules (the same as mixflow report's, from mixflow.observables):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
@@ -20,12 +26,40 @@ import os
 import numpy as np
 
 from mixflow import observables as obs
+from mixflow.foamdict import read_dict, unquote
 from mixflow.commands import suite
+from mixflow.commands.tier_trade import observables
 from mixflow.froude import first_time, subcritical_from
 from mixflow.paper import MIXTURES, PAPER, PAPER_NAME, SECTION_X
 
 PAPER_SUBCRITICAL = {PAPER_NAME[n]: PAPER["subcritical"][n] for n in MIXTURES}
 PAPER_SAVAGE_B = list(PAPER["savage_interval_BP"])
+TIMES = (0.5, 1.0, 2.0, 3.0)  # the issue's and the paper's observation times (s)
+
+
+def scene_observables(s):
+    """Fronts, energies and back-wall height at TIMES, arrival, subcritical time and the longest
+    Savage collisional interval at x = 0.8 m."""
+    row = observables(s, TIMES)
+    sv = obs.savage(s)
+    window = obs.collision_interval(sv[0], np.nan_to_num(sv[1], nan=0.0)) if sv else None
+    row["savage_interval_s"] = list(window) if window else None
+    return row
+
+
+def convergence_error(row, partner):
+    """partner - row for every observable both have (per time, and the scalars)."""
+    err = {}
+    for k, v in row.items():
+        p = partner.get(k)
+        if isinstance(v, dict) and isinstance(p, dict):
+            err[k] = {q: p[q] - x for q, x in v.items()
+                      if isinstance(x, float) and isinstance(p.get(q), float)}
+        elif isinstance(v, float) and isinstance(p, float):
+            err[k] = p - v
+        elif isinstance(v, list) and isinstance(p, list) and len(v) == len(p):
+            err[k] = [b - a for a, b in zip(v, p)]
+    return err
 
 
 def arrival_and_subcritical(s):
@@ -41,22 +75,44 @@ def arrival_and_subcritical(s):
     return t0, (None if ts is None else ts - t0), rule
 
 
+def write_observables_csv(path, scenes):
+    """One row per scene, time and observable with its convergence error (empty without one)."""
+    with open(path, "w") as f:
+        f.write("scene,time_s,observable,value,convergence_error\n")
+        for p, rec in scenes.items():
+            o, e = rec["observables"], rec.get("convergence_error", {})
+            for key, v in o.items():
+                if isinstance(v, dict):
+                    for q, x in v.items():
+                        err = e.get(key, {}).get(q, "")
+                        f.write(f"{p},{key[:-1]},{q},{x},{err}\n")
+                elif isinstance(v, float):
+                    f.write(f"{p},,{key},{v},{e.get(key, '')}\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--work", default="runs/reference")
     ap.add_argument("--out", default="results/mixtures")
+    ap.add_argument("--partner", default="",
+                    help="the same scenes with one speed knob one step finer (convergence error)")
     a = ap.parse_args()
-    work = a.work if os.path.isabs(a.work) else os.path.join(suite.ROOT, a.work)
-    out = a.out if os.path.isabs(a.out) else os.path.join(suite.ROOT, a.out)
+
+    def absolute(p):
+        return p if os.path.isabs(p) else os.path.join(suite.ROOT, p)
+    works, out = [absolute(w) for w in a.work.split(",")], absolute(a.out)
+    partners = [absolute(w) for w in a.partner.split(",") if w]
     os.makedirs(out, exist_ok=True)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    scenes = {n: obs.Scene(work, n) for n in MIXTURES}
+    scenes = {n: obs.first_finished(works, n) for n in MIXTURES}
     done = {n: s for n, s in scenes.items() if s.done}
-    summary = {"command": f"mixflow mixture-results --work {a.work} --out {a.out}",
-               "work": work, "scenes": {}, "subcritical_after_arrival_s": {},
+    command = (f"mixflow mixture-results --work {a.work} --out {a.out}"
+               + (f" --partner {a.partner}" if a.partner else ""))
+    summary = {"command": command, "work": ", ".join(works), "partner": ", ".join(partners),
+               "scenes": {}, "subcritical_after_arrival_s": {},
                "subcritical_arrival_rule": {}, "savage_collisional_interval_s": {},
                "paper": {"subcritical_after_arrival_s": PAPER_SUBCRITICAL,
                          "savage_collisional_interval_s": {"B&P": PAPER_SAVAGE_B},
@@ -86,7 +142,14 @@ def main():
             "granular_front_end_m": float(x[-1]), "liquid_front_end_m": float(xl[-1]),
             "liquid_outflow_m3": s.liquid[-1]["volume_outlet_m3"],
             "liquid_volume_balance_worst": float(np.nanmax(np.abs(obs.col(s.liquid, "volume_balance")))),
+            "sample_solid_fraction": (s.summary or {}).get("settled", {}).get("sample_solid_fraction"),
+            "observables": scene_observables(s),
         }
+        partner = obs.first_finished(partners, n) if partners else None
+        if partner is not None and partner.done:
+            rec = summary["scenes"][p]
+            rec["partner_tier_set"] = unquote(read_dict(os.path.join(partner.dir, "system", "tier")).get("set", ""))
+            rec["convergence_error"] = convergence_error(rec["observables"], scene_observables(partner))
     ax[0].set(xlabel="t (s)", ylabel="front x (m)", title="liquid and granular fronts")
     ax[1].axhline(1, color="k", lw=0.8)
     ax[1].set(xlabel="t - t0 (s)", ylabel="Fr at x = 1.38 m", title="liquid Froude number", ylim=(0, 5))
@@ -97,6 +160,7 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(out, "mixtures.png"), dpi=110)
     summary["missing"] = [PAPER_NAME[n] for n in scenes if n not in done]
+    write_observables_csv(os.path.join(out, "observables.csv"), summary["scenes"])
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(obs.clean(summary), f, indent=2)
         f.write("\n")

@@ -1,7 +1,7 @@
 """Report of the Table 1 scenes run by mixflow suite (docs/suite.md).
 
 usage: report.py [--work runs/reference[,runs/quick,...]] [--out results/li_zhao_2018]
-                 [--bulk-work runs/bulk]
+                 [--bulk-work runs/bulk] [--partner WORK[,WORK...]]
 
 Reads the finished scenes (WORK/<scene>/.done; with several work directories, each scene from the
 first one where it finished, so a report can take each scene from the best tier that ran it) and
@@ -12,7 +12,10 @@ dry deposits and the runout law, HB-I/B-I normalised fronts, and the table "the 
 get" for the numbers of docs/model.md §8. A scene that is not finished is listed as such; a
 figure or number that the finished scenes do not allow says so instead of stopping the report.
 With the bulk model's runs of the mixtures (--bulk-work, the suite's bulk tier), a section puts
-its numbers beside the CFD-DEM ones.
+its numbers beside the CFD-DEM ones. With --partner (the mixtures again with one speed knob one
+step finer), every row that a mixture enters is built again from the partner's runs: the row
+carries the partner's value and their difference (its convergence error), and a verdict that
+the partner's runs turn over is no verdict ("not converged").
 """
 
 import argparse
@@ -27,7 +30,7 @@ from mixflow.commands import suite  # (scene list, dictionary reader)
 from mixflow import outputs, schema
 from mixflow.froude import HOLD_S
 from mixflow.observables import (
-    clean, col, fmt, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
+    clean, col, fmt, first_finished, Scene, vtk_series, vtk_points, granular_surface, liquid_front,
     granular_front, subcritical, subcritical_volume_depth, back_wall_key,
     back_wall, particle_energies, energy_excess, e_pd, e_fc, savage,
     collision_interval, stage_change, outflow_start, runout_law)
@@ -343,6 +346,26 @@ def row(quantity, paper, ours, tier, agree, note):
             "agrees": None if agree is None else bool(agree), "note": note}
 
 
+def with_partner(rows, partner_rows, partner_names):
+    """Each row a partner scene enters gets the partner's value ("finer") and, for numbers, their
+    difference ("convergence_error"); where the two verdicts differ the row has none."""
+    by_q = {r["quantity"]: r for r in partner_rows}
+    for r in rows:
+        p = by_q.get(r["quantity"])
+        if p is None or not any(n in r["quantity"] or n in str(r["note"])
+                                          for n in partner_names):
+            continue
+        r["finer"] = p["ours"]
+        if isinstance(r["ours"], (int, float)) and isinstance(p["ours"], (int, float)):
+            r["convergence_error"] = round(p["ours"] - r["ours"], 4)
+        if r["agrees"] is not None and p["agrees"] != r["agrees"]:
+            r["note"] = (f"not converged: one step finer the verdict is "
+                         f"{ {True: 'agrees', False: 'differs', None: 'none'}[p['agrees']] } "
+                         f"({fmt(p['ours'])}); " + r["note"])
+            r["agrees"] = None
+    return rows
+
+
 def legend(ax):
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7)
@@ -553,10 +576,13 @@ def write_report(out, work, sc, F, rows, law, command, bulk_lines=()):
             except suite.DictError:
                 lines.append(f"- **{t}**")
     lines += ["", "## The paper says / we get", "",
-              "| quantity | paper | ours | tier | agrees | note |", "|---|---|---|---|---|---|"]
+              "| quantity | paper | ours | one step finer | tier | agrees | note |",
+              "|---|---|---|---|---|---|---|"]
     for r in rows:
         ag = {True: "yes", False: "no", None: "-"}[r["agrees"]]
-        lines.append(f"| {r['quantity']} | {r['paper']} | {fmt(r['ours'])} | {r['tier']} | {ag} | {r['note']} |")
+        finer = fmt(r["finer"]) if "finer" in r else "-"
+        lines.append(f"| {r['quantity']} | {r['paper']} | {fmt(r['ours'])} | {finer} | {r['tier']} | "
+                     f"{ag} | {r['note']} |")
     lines += ["", "Definitions: liquid front = largest x where the bed cell row holds α ≥ 0.5; "
               "granular front = largest x of the largest connected cluster (gap ≤ 0.5 d); "
               f"t0 = arrival of the liquid front at x = {SECTION_X} m, Fr = v / √(g h) with v the mean liquid velocity and h the liquid surface height there (the pores of a saturated granular layer counted full; runs before that column: the liquid volume depth), subcritical = Fr < 1 held for {HOLD_S} s; back-wall height = the liquid surface height of the first cell column; "
@@ -699,6 +725,9 @@ def main(argv=None):
                     help="suite.py's work directory, or several, comma-separated, in order of "
                     "preference")
     ap.add_argument("--out", default="results/li_zhao_2018")
+    ap.add_argument("--partner", default="",
+                    help="work directories with the mixtures one speed knob one step finer "
+                    "(each row's convergence error)")
     ap.add_argument("--bulk-work", default="runs/bulk",
                     help="the suite's bulk-tier work directory (the bulk model's column; skipped "
                     "where its scenes are not finished)")
@@ -708,22 +737,21 @@ def main(argv=None):
     works, out = [absolute(p) for p in args.work.split(",")], absolute(args.out)
     work = ", ".join(works)
     os.makedirs(out, exist_ok=True)
-    sc = {}
-    for n in suite.TABLE1:
-        try:
-            found = [w for w in works if os.path.isfile(os.path.join(w, n, ".done"))]
-            sc[n] = Scene((found or works)[0], n)
-        except Exception as e:  # noqa: BLE001  an unreadable scene is reported, not fatal
-            print(f"report.py: {n}: cannot read its outputs: {e}", file=sys.stderr)
-            sc[n] = Scene("/nonexistent", n)
+    sc = {n: first_finished(works, n) for n in suite.TABLE1}
     fin = [n for n in suite.TABLE1 if sc[n].done]
     law = runout_law(sc)
     F = Figures(out)
     make_figures(F, sc, fin, law)
     rows = table(sc, law)
+    partners = [absolute(p) for p in args.partner.split(",") if p]
+    if partners:
+        finer = {n: first_finished(partners, n) for n in MIXTURES}
+        finer = {n: s for n, s in finer.items() if s.done}
+        rows = with_partner(rows, table({**sc, **finer}, law), [PAPER_NAME[n] for n in finer])
     bulk = {n: Scene(absolute(args.bulk_work), n) for n in MIXTURES}
     brows = bulk_rows(sc, bulk)
     command = (f"mixflow report --work {args.work} --out {args.out}"
+               + (f" --partner {args.partner}" if partners else "")
                + (f" --bulk-work {args.bulk_work}" if brows else ""))
     write_report(out, work, sc, F, rows, law, command, bulk_section(brows, args.bulk_work))
     summary = {"command": command, "work": work,
