@@ -87,8 +87,9 @@ Schema makeSchema() {
                     "instant: the gate is gone at t = 0 (the paper's); lifted: a plate at "
                     "x = L whose lower edge rises from the channel floor as h(t) (`speed` or "
                     "`lift`), the liquid leaving below it (mixflowFoam, implicit momentum sink "
-                    "in the plate's cells whose centres lie above h; cfd/README.md). Liquid "
-                    "scenes only"),
+                    "in the plate's cells whose centres lie above h; cfd/README.md) and the "
+                    "grains held by it until it passes (mixflowDem, a LIGGGHTS mesh wall "
+                    "moved by fix move/mesh; dem/README.md). Liquid and dry scenes"),
           scalarParam("gate.speed", 0, Range::nonNegative(), "m/s",
                       "lifted: h(t) = speed t (0: a plate that never lifts); give `speed` or "
                       "`lift`, not both")
@@ -103,12 +104,13 @@ Schema makeSchema() {
               .only({"lifted"})
               .shownDefault("(lifted: speed or lift)")
               .alsoAllowed("t ≥ 0 increasing, h ≥ 0"),
-          autoScalar("gate.thickness", Range::positive(), "m",
-                     "lifted: the plate spans L ≤ x < L + thickness, its cells are those whose "
-                     "centres lie in it; auto: two cells (cfdDict cellSize). One cell lets the "
-                     "liquid through: a face's 1/A in the pressure equation is the mean of its "
-                     "two cells', so the faces to the free cells are half open (measured 28 % "
-                     "of a held column beyond a one-cell plate after 0.2 s)")
+          autoScalar(
+              "gate.thickness", Range::positive(), "m",
+              "lifted, liquid: the plate spans L ≤ x < L + thickness, its cells are those whose "
+              "centres lie in it; auto: two cells (cfdDict cellSize). One cell lets the "
+              "liquid through: a face's 1/A in the pressure equation is the mean of its "
+              "two cells', so the faces to the free cells are half open (measured 28 % "
+              "of a held column beyond a one-cell plate after 0.2 s)")
               .only({"lifted"})
               .alsoAllowed("≥ two cells, < channel length − L"),
           dictParam("particles", "the grains (Table 3); moduli before softening"),
@@ -242,12 +244,12 @@ void readGate(const Schema& sc, const Dictionary& d, const std::string& content,
                     "; its entries are: " + joinWords(allowed));
   d.allowOnly(allowed);
   if (!g.lifted()) return;
-  // The DEM half has no moving wall: a lifted gate holds the liquid only.
-  if (content != "liquid")
+  // The liquid's plate (mixflowFoam) and the grains' (mixflowDem); a mixture would need both in
+  // mixflowCoupled.
+  if (content == "mixture")
     d.fail("removal",
-           "value lifted is implemented for content liquid only (this scene's "
-           "content is " +
-               content + "); allowed words here: instant");
+           "value lifted is implemented for content liquid and particles (this scene's "
+           "content is mixture); allowed words here: instant");
   const bool hasSpeed = d.has("speed"), hasLift = d.has("lift");
   if (hasSpeed == hasLift)
     d.fail(hasSpeed ? "lift" : "speed",
@@ -382,6 +384,14 @@ void checkGeometry(const Dictionary& scene, const SceneProperties& s) {
   if (s.channel.height <= s.sample.height)
     channel.fail("height", "value " + num(s.channel.height) + " must exceed the sample height (" +
                                num(s.sample.height) + " m): the open top lies above the column");
+  // The grains' lifted plate (as tall as the column and 3 d) rises until its lower edge passes the
+  // column (2 d above it) inside the DEM box, whose top is at least 1.5 times the channel height.
+  const double plateTop = 2 * s.sample.height + 5 * d;
+  if (s.grains() && s.gate.lifted() && plateTop >= 1.5 * s.channel.height)
+    channel.fail("height", "value " + num(s.channel.height) + " is too low for a lifted gate: " +
+                               "the plate rises to " + num(plateTop) +
+                               " m (twice the sample height and 5 d); allowed range (" +
+                               num(plateTop / 1.5) + ", inf)");
 }
 }  // namespace
 

@@ -28,7 +28,7 @@ struct ChannelSpec {
 };
 
 // How the gate at x = L leaves the column at t = 0: removed at once (the paper's), or lifted as a
-// plate whose lower edge rises from the channel floor by a law h(t) (liquid scenes only).
+// plate whose lower edge rises from the channel floor by a law h(t) (liquid and dry scenes).
 struct GateSpec {
   std::string removal = "instant";  // instant | lifted
   double speed = -1;                // m/s, h = speed t; < 0: the table `lift` gives h(t)

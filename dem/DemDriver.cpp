@@ -339,8 +339,36 @@ CollapseReport DemDriver::collapse(const SettleReport& settled) {
   lig_->command("reset_timestep 0");
   step0_ = lig_->step();
   lig_->command("unfix wGate");
+  placeLiftedGate(0.0, step0_);
   lig_->invalidateSetup();
   return runCollapse(CollapseReport{}, false, false);
+}
+
+void DemDriver::placeLiftedGate(double t, long step0) {
+  if (!scene_.gate.lifted()) return;
+  auto gate = std::make_unique<LiftedGate>(scene_, settled_.settledHeight);
+  if (gate->removedAt(t)) return;
+  const std::string file = (fs::path(scene_.caseDir) / "dem" / "gate.stl").string();
+  if (rank_ == 0) std::ofstream(file) << gate->stl(scene_.gate.height(t));
+  MPI_Barrier(comm_);
+  lig_->commands(gate->commands(file, dt_, step0));
+  lig_->command("run 0");  // sets the mesh up: a restart written before it would fail
+  if (rank_ == 0)
+    out_ << "[dem] gate lifted: plate at x = " << fmt(scene_.sample.length, 6) << " m, "
+         << fmt(gate->plateHeight(), 4) << " m tall, lower edge at "
+         << fmt(scene_.gate.height(t), 4) << " m at t = " << fmt(t, 6) << " s, removed once above "
+         << fmt(gate->removalHeight(), 4) << " m" << std::endl;
+  gate_ = std::move(gate);
+}
+
+void DemDriver::removeLiftedGateIfPassed(double t) {
+  if (!gate_ || !gate_->removedAt(t)) return;
+  lig_->commands(LiftedGate::removeCommands());
+  lig_->invalidateSetup();
+  gate_.reset();
+  if (rank_ == 0)
+    out_ << "[dem] gate lifted past the column at t = " << fmt(t, 6) << " s: plate removed"
+         << std::endl;
 }
 
 void DemDriver::writeResumeState(const CollapseReport& rep, bool profileDone) {
@@ -384,6 +412,7 @@ CollapseReport DemDriver::resume(SettleReport& settled) {
     out_ << "[dem] resuming at t = " << fmt(t, 6) << " s from " << restartFile << std::endl;
   lig_->commands(resumeSetupCommands(scene_, restartFile, dt_));
   step0_ = 0;  // the restart carries the step count since the gate opened
+  placeLiftedGate(t, step0_);
   // The stopped run's slabs, re-balance count and atom order, so the resumed run goes on as the
   // uninterrupted one (as mixflowCoupled -resume does, coupling/DemStartup.cpp). The setup run
   // first makes the pair's contact-history fix from the restart's per-atom data.
@@ -425,6 +454,7 @@ CollapseReport DemDriver::runCollapse(CollapseReport rep, bool profileDone, bool
     const long n = std::min(rec.sampleEvery(), std::max(1L, std::lround((s.endTime - t) / dt_)));
     lig_->run(n);
     t = rec.time();
+    removeLiftedGateIfPassed(t);
     rec.deleteLeavers(rep);
     const Energies e = rec.sample(rep);
     rec.profileIfDue(profileDone);

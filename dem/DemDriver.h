@@ -13,6 +13,7 @@
 
 #include "CollapseRecorder.h"
 #include "Dictionary.h"
+#include "LiftedGate.h"
 #include "LiggghtsSession.h"
 #include "PackingSearch.h"
 #include "Scene.h"
@@ -89,6 +90,10 @@ class DemDriver {
   double simTime() const;
   void writeResumeState(const CollapseReport& rep, bool profileDone);
   CollapseReport runCollapse(CollapseReport rep, bool profileDone, bool appendSeries);
+  // A lifted gate (sceneProperties gate): its plate placed at h(t), moving from step step0 on.
+  void placeLiftedGate(double t, long step0);
+  // Its removal once the lower edge has passed the column.
+  void removeLiftedGateIfPassed(double t);
   SettleReport measureSample(double settleTime, bool converged);
 
   const Scene& scene_;
@@ -105,6 +110,7 @@ class DemDriver {
   long lastBalance_ = -1;  // k of the collapse's last re-balance, at k x balanceInterval
   int settleSlot_ = 0;     // the settle checkpoint's next restart file (SettleCheckpoint::slotFile)
   SettleReport settled_;
+  std::unique_ptr<LiftedGate> gate_;  // while the lifted gate's plate is in LIGGGHTS
 };
 
 }  // namespace mixflow::dem

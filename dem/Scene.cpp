@@ -29,6 +29,7 @@ Scene Scene::read(const std::string& caseDir) {
   s.content = scene.content;
   s.sample = scene.sample;
   s.channel = scene.channel;
+  s.gate = scene.gate;
   s.particles = scene.particles;
   // The liquid's density enters the Savage number (rho_s - rho_f).
   if (s.content == "mixture") s.fluidDensity = scene.liquid.density;

@@ -28,6 +28,7 @@ struct Scene {
   std::string content;  // particles | liquid | mixture
   SampleSpec sample;
   ChannelSpec channel;
+  GateSpec gate;  // removed at once at t = 0, or lifted (LiftedGate.h)
   ParticleMaterial particles;
   double fluidDensity = 0;  // kg/m3: the liquid of a mixture (liquid.density); 0 for a dry scene
   SettleSpec settle;

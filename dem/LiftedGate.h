@@ -1,0 +1,39 @@
+// A lifted gate for the grains (sceneProperties gate { removal lifted; ... }): a rigid plate in the
+// plane x = L, as tall as the settled column and a margin, whose lower edge follows the scene's law
+// h(t). It is a LIGGGHTS mesh wall (fix mesh/surface) moved by fix move/mesh linear/variable at
+// the law's speed, and is removed once its lower edge has passed every grain of the column.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Scene.h"
+
+namespace mixflow::dem {
+
+class LiftedGate {
+ public:
+  // settledHeight: the settled column's height (m); its tallest grains lie within a diameter.
+  LiftedGate(const Scene& s, double settledHeight);
+
+  // The plate's lower edge at t = 0 is h(0); the plate spans lower edge .. + plateHeight().
+  double plateHeight() const { return plateHeight_; }
+  // Above this lower edge no grain of the column can touch the plate: it is removed.
+  double removalHeight() const { return removalHeight_; }
+  bool removedAt(double t) const { return scene_.gate.height(t) > removalHeight_; }
+
+  // The plate (two triangles, ASCII STL) with its lower edge at lowerEdge.
+  std::string stl(double lowerEdge) const;
+  // The mesh, its wall and its motion from the restart or the opening at step*dt = t on; the
+  // motion reads the law's speed at t = (step - step0) dt, step0 being the opening's step.
+  std::vector<std::string> commands(const std::string& stlFile, double dt, long step0) const;
+  static std::vector<std::string> removeCommands();
+  // The equal-style formula of dh/dt at t = (step - step0) dt (piecewise constant).
+  std::string speedFormula(double dt, long step0) const;
+
+ private:
+  const Scene& scene_;
+  double plateHeight_ = 0, removalHeight_ = 0;
+};
+
+}  // namespace mixflow::dem
