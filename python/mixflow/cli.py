@@ -37,6 +37,7 @@ VERBS = {
     "viscous-packing": ("viscous_packing", "loose against dense collapse in a viscous liquid"),
     "martin-moyce-interfoam": ("martin_moyce_interfoam", "Martin & Moyce: mixflowFoam, interFoam, experiment"),
     "lobovsky-gate": ("lobovsky_gate", "Lobovsky et al. (2014) fronts: instant against lifted gate"),
+    "martin-moyce-gate": ("martin_moyce_gate", "Martin & Moyce (1952) front: instant against lifted gates"),
     "liquid-ke-by-alpha": ("liquid_ke_by_alpha", "a coupled run's liquid kinetic energy by liquid fraction"),
     "stability-dem": ("stability_dem", "the DEM step against stiffness (results/stability)"),
     "stability-drag": ("stability_drag", "the coupling interval against the drag's relaxation number"),

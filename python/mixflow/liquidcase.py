@@ -82,9 +82,11 @@ MM_SCENE = (f"content liquid;\nsample {{ length {MM_SIDE}; height {MM_SIDE}; wid
             "liquid { rheology Newtonian; density 1000; viscosity 0.001; surfaceTension 0.07; }\n")
 
 
-def write_martin_moyce_case(case, cells):
-    """The column on a/CELLS, 2-D, to t = 0.26 s (T = 3.4)."""
-    write_case(case, MM_SCENE, f"dimensions 2;\ncellSize {MM_SIDE / cells:.10g};\n", 0.26, 0.13)
+def write_martin_moyce_case(case, cells, gate=""):
+    """The column on a/CELLS, 2-D, to t = 0.26 s (T = 3.4); GATE: the sceneProperties gate
+    block's entries (default: none, the instant removal)."""
+    scene = MM_SCENE + (f"gate {{ {gate} }}\n" if gate else "")
+    write_case(case, scene, f"dimensions 2;\ncellSize {MM_SIDE / cells:.10g};\n", 0.26, 0.13)
 
 
 def read_martin_moyce(path):
