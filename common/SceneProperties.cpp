@@ -89,7 +89,7 @@ Schema makeSchema() {
                     "`lift`), the liquid leaving below it (mixflowFoam, implicit momentum sink "
                     "in the plate's cells whose centres lie above h; cfd/README.md) and the "
                     "grains held by it until it passes (mixflowDem, a LIGGGHTS mesh wall "
-                    "moved by fix move/mesh; dem/README.md). Liquid and dry scenes"),
+                    "moved by fix move/mesh; dem/README.md), both in a mixture"),
           scalarParam("gate.speed", 0, Range::nonNegative(), "m/s",
                       "lifted: h(t) = speed t (0: a plate that never lifts); give `speed` or "
                       "`lift`, not both")
@@ -235,7 +235,7 @@ bool contains(const std::vector<std::string>& v, const std::string& k) {
 }
 
 // The gate's entries depend on its removal; one of speed and lift gives a lifted gate's law.
-void readGate(const Schema& sc, const Dictionary& d, const std::string& content, GateSpec& g) {
+void readGate(const Schema& sc, const Dictionary& d, GateSpec& g) {
   g.removal = sc.word(d, "gate.removal");
   const std::vector<std::string> allowed = sc.keys("gate", g.removal);
   for (const auto& k : d.keys())
@@ -244,12 +244,6 @@ void readGate(const Schema& sc, const Dictionary& d, const std::string& content,
                     "; its entries are: " + joinWords(allowed));
   d.allowOnly(allowed);
   if (!g.lifted()) return;
-  // The liquid's plate (mixflowFoam) and the grains' (mixflowDem); a mixture would need both in
-  // mixflowCoupled.
-  if (content == "mixture")
-    d.fail("removal",
-           "value lifted is implemented for content liquid and particles (this scene's "
-           "content is mixture); allowed words here: instant");
   const bool hasSpeed = d.has("speed"), hasLift = d.has("lift");
   if (hasSpeed == hasLift)
     d.fail(hasSpeed ? "lift" : "speed",
@@ -431,7 +425,7 @@ SceneProperties SceneProperties::read(const Dictionary& scene, Half half) {
   {
     const Dictionary gate = scene.subDictOrEmpty("gate");
     sc.allowOnly(gate, "gate");  // every removal's entries; readGate names the misplaced ones
-    readGate(sc, gate, s.content, s.gate);
+    readGate(sc, gate, s.gate);
   }
   if (half == Half::fluid && s.fluid()) readLiquid(sc, scene.subDict("liquid"), s);
   if (half == Half::grains && s.content == "mixture")

@@ -59,19 +59,79 @@ std::string LiftedGate::stl(double lowerEdge) const {
   return o.str();
 }
 
-std::string LiftedGate::speedFormula(double dt, long step0) const {
+namespace {
+// t = (step - step0) dt as an equal-style expression.
+std::string timeOf(double dt, long step0) {
+  return "((step-" + std::to_string(step0) + ")*" + fmt(dt) + ")";
+}
+}  // namespace
+
+double LiftedGate::parkTime() const {
   const GateSpec& g = scene_.gate;
-  if (g.speed >= 0) return fmt(g.speed);
-  // Between two points of the table the edge rises at their slope; before and after, it rests.
-  const std::string t = "((step-" + std::to_string(step0) + ")*" + fmt(dt) + ")";
-  std::string f;
+  const double hp = removalHeight_;
+  if (g.speed >= 0) return g.speed > 0 ? hp / g.speed : -1;
+  if (g.lift.front().second >= hp) return 0;
   for (size_t i = 1; i < g.lift.size(); ++i) {
     const auto& [t0, h0] = g.lift[i - 1];
     const auto& [t1, h1] = g.lift[i];
-    if (!f.empty()) f += "+";
-    f += "(" + t + ">=" + fmt(t0) + ")*(" + t + "<" + fmt(t1) + ")*" + fmt((h1 - h0) / (t1 - t0));
+    if (h1 >= hp && h1 > h0) return t0 + (t1 - t0) * (hp - h0) / (h1 - h0);
   }
-  return f.empty() ? "0" : f;
+  return -1;
+}
+
+std::string LiftedGate::speedFormula(double dt, long step0, bool parked) const {
+  const GateSpec& g = scene_.gate;
+  const std::string t = timeOf(dt, step0);
+  std::string f;
+  if (g.speed >= 0) {
+    f = fmt(g.speed);
+  } else {
+    // Between two points of the table the edge rises at their slope; before and after, it rests.
+    for (size_t i = 1; i < g.lift.size(); ++i) {
+      const auto& [t0, h0] = g.lift[i - 1];
+      const auto& [t1, h1] = g.lift[i];
+      if (!f.empty()) f += "+";
+      f += "(" + t + ">=" + fmt(t0) + ")*(" + t + "<" + fmt(t1) + ")*" + fmt((h1 - h0) / (t1 - t0));
+    }
+    if (f.empty()) f = "0";
+  }
+  const double tp = parkTime();
+  if (parked && tp >= 0) f = "(" + t + "<" + fmt(tp) + ")*(" + f + ")";
+  return f;
+}
+
+std::string LiftedGate::parkedHeightFormula(double dt, long step0) const {
+  const GateSpec& g = scene_.gate;
+  const std::string t = timeOf(dt, step0);
+  std::string h;
+  if (g.speed >= 0) {
+    h = t + "*" + fmt(g.speed);
+  } else {
+    h = "(" + t + "<" + fmt(g.lift.front().first) + ")*" + fmt(g.lift.front().second);
+    for (size_t i = 1; i < g.lift.size(); ++i) {
+      const auto& [t0, h0] = g.lift[i - 1];
+      const auto& [t1, h1] = g.lift[i];
+      h += "+(" + t + ">=" + fmt(t0) + ")*(" + t + "<" + fmt(t1) + ")*(" + fmt(h0) + "+" +
+           fmt((h1 - h0) / (t1 - t0)) + "*(" + t + "-" + fmt(t0) + "))";
+    }
+    h += "+(" + t + ">=" + fmt(g.lift.back().first) + ")*" + fmt(g.lift.back().second);
+  }
+  // The smaller of h and the parking height, without min() (a compute function in LIGGGHTS).
+  const std::string p = fmt(removalHeight_);
+  return "((" + h + ")<" + p + ")*(" + h + ")+((" + h + ")>=" + p + ")*" + p;
+}
+
+std::vector<std::string> LiftedGate::parkedCommands(const std::string& stlFile, double dt) const {
+  const Scene& s = scene_;
+  return {"variable gateLift equal " + parkedHeightFormula(dt, 0),
+          "fix gateMesh all mesh/surface file " + stlFile + " type " + std::to_string(kWallType) +
+              " move 0 ${gateLift} 0",
+          "fix wGateLifted all wall/gran " + contactModel(s.particles) +
+              " mesh n_meshes 1 meshes gateMesh " + contactSettings(s.dem.limitForce),
+          "variable gateSpeed equal " + speedFormula(dt, 0, true),
+          "variable gateStill equal 0",
+          "fix gateMove all move/mesh mesh gateMesh linear/variable v_gateStill v_gateSpeed "
+          "v_gateStill"};
 }
 
 std::vector<std::string> LiftedGate::commands(const std::string& stlFile, double dt,

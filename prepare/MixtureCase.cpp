@@ -10,6 +10,7 @@
 #include "DemDriver.h"
 #include "Dictionary.h"
 #include "ForceModel.h"
+#include "LiftedGate.h"
 #include "LiggghtsCommands.h"
 #include "Scene.h"
 #include "SettledSample.h"
@@ -272,6 +273,17 @@ MixtureSetup prepareMixture(LiquidCase& c) {
     if (line.rfind("processors", 0) == 0 && scene.dem.processors == "* * *") continue;
     s << line << "\n";
   }
+  if (scene.gate.lifted()) {
+    // The grains' plate at h(t) of the script's step (0 fresh, the restart's on a resume), then
+    // lifted at the law's speed and parked once past the column (dem/LiftedGate.h).
+    const dem::LiftedGate gate(scene, m.settledHeight);
+    s << "# The lifted gate (sceneProperties gate): a plate at x = L, lower edge h(t).\n";
+    for (const std::string& line :
+         gate.parkedCommands("${mixflowCase}/dem/gate.stl", m.demTimeStep))
+      s << line << "\n";
+    m.gateStl = gate.stl(0.0);
+    m.gateStlPath = (fs::path(c.caseDir) / "dem" / "gate.stl").string();
+  }
   m.demScript = s.str();
   return m;
 }
@@ -280,6 +292,11 @@ void writeMixtureDemScript(const MixtureSetup& m) {
   const std::string tmp = m.demScriptPath + ".tmp";
   std::ofstream(tmp) << m.demScript;
   fs::rename(tmp, m.demScriptPath);
+  if (!m.gateStl.empty()) {
+    // Next to the settled sample (the script reads ${mixflowCase}/dem/gate.stl).
+    std::ofstream(m.gateStlPath + ".tmp") << m.gateStl;
+    fs::rename(m.gateStlPath + ".tmp", m.gateStlPath);
+  }
 }
 
 void describeMixture(const MixtureSetup& m, const LiquidCase& c, std::ostream& os) {

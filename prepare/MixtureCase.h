@@ -53,6 +53,8 @@ struct MixtureSetup {
   std::vector<std::string> notes;  // departures the case states a reason for (coarseCellsReason)
   std::string demScriptPath;       // where the DEM script is written
   std::string demScript;           // its text (prepareMixture only)
+  std::string gateStl;             // a lifted gate's plate, else empty
+  std::string gateStlPath;         // where it is written: <case>/dem/gate.stl
 };
 
 // Everything of a mixture scene that does not need the settled sample, at the fill height

@@ -31,7 +31,7 @@ spans 0.1 <= x < 0.11 m.
             the last x both fronts reach (every 5 mm), and the slower gate's delay larger than the
             faster one's at each x (a gate that does nothing fails (1) and this).
   bad-input Broken gate entries stop `mixflowPrepare -check` (exit 2) naming the file, the entry
-            and the allowed range or words; a lifted gate in a mixture is refused too.
+            and the allowed range or words.
 
 Exit status 0 = pass, 1 = fail.
 """
@@ -219,12 +219,6 @@ def bad_input(a, work):
         case = os.path.join(work, "bad_" + re.sub(r"\W+", "_", name))
         write_case(case, scene(gate), CFD, 0.3, 0.3)
         ok &= refused(a.prepare, case, name, ["constant/sceneProperties"] + expected)
-    # A mixture: the coupled solver has no lifted plate for either phase.
-    case = os.path.join(work, "bad_mixture_lifted")
-    write_case(case, scene("removal lifted; speed 1;").replace("content liquid", "content mixture"),
-               CFD, 0.3, 0.3)
-    ok &= refused(a.prepare, case, "lifted gate in a mixture",
-                  ["constant/sceneProperties", "gate.removal", "content liquid and particles"])
     case = os.path.join(work, "valid_table")
     write_case(case, scene("removal lifted; lift ((0 0) (0.05 0.02) (0.1 0.2)); thickness 0.02;"),
                CFD, 0.3, 0.3)
