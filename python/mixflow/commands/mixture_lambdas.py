@@ -175,7 +175,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress", "lambdas.json"))
     a = ap.parse_args()
     build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
-    res = {"command": "mixflow mixture-lambdas --work runs/reference",
+    res = {"command": " ".join(["mixflow mixture-lambdas"] + sys.argv[1:]),
            "flowing_rule": "lambda valid, alpha_s >= 0.1, |u_s| >= 0.05 m/s",
            "grid": "x 0-3 m, y 0-0.72 m in bins no narrower than a fluid cell, windows 0.1 s",
            "scenes": {}}

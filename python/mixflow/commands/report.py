@@ -19,6 +19,7 @@ the partner's runs turn over is no verdict ("not converged").
 """
 
 import argparse
+import csv
 import json
 import os
 import sys
@@ -282,19 +283,20 @@ def fidelity(*scenes):
     return "; ".join(sorted({FIDELITY.get((s.tier, s.content), "") for s in scenes if s.done} - {""}))
 
 
-def yield_stress_summary():
-    """results/yield_stress/summary.json (the closures' checks, the paper-faithful runs), or {}."""
-    path = os.path.join(suite.ROOT, "results", "yield_stress", "summary.json")
+def mobility_rows():
+    """results/convergence/mobility.csv (the quick yield-stress mixtures' sampling and cell-size
+    runs) by variant, or {}."""
+    path = os.path.join(suite.ROOT, "results", "convergence", "mobility.csv")
     try:
         with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError):
+            return {r["variant"] + "/" + r["exchangeEvery"]: r for r in csv.DictReader(f)}
+    except OSError:
         return {}
 
 
 def locked(s):
-    """For a yield-stress mixture run with the verified (implicit) drag: what it gives, what the
-    paper-faithful scheme gives (results/yield_stress/), which the evidence supports ('' else)."""
+    """For a yield-stress mixture run with the verified (implicit) drag: how much its mobility
+    owes to the fluid sampling (results/convergence/mobility.csv; '' where not measured)."""
     if s.name not in ("HB+P", "B+P") or not s.done:
         return ""
     try:
@@ -303,38 +305,20 @@ def locked(s):
         return ""
     if schema.value(cp, "constant/couplingProperties", "dragIntegration") == "held":
         return ""
-    ys = yield_stress_summary()
-    runs = ys.get("paper_faithful", {}).get("runs", {}).get(PAPER_NAME[s.name], {})
+    rows = mobility_rows()
+    tag = "hb" if s.name == "HB+P" else "b"
+    cell, point = rows.get(f"{tag}_cell_0.06/2"), rows.get(f"{tag}_cellPoint_0.06/2")
+    if not (cell and point):
+        return ""
     note = ("verified drag (dragViscosity slip, implicit: passes the single-grain, power-law "
-            "sphere and bed checks, results/yield_stress/): the dense saturated column creeps")
-    if "paper" in runs and "default" in runs:
-        pf, df = runs["paper"], runs["default"]
-        note += (f"; the paper-faithful scheme (resolved, force held over the exchange interval, "
-                 f"d(eps)/dt off) flows, quick tier: granular front {pf['granular_front_m']:.2f} m "
-                 f"at 1.5 s against {df['granular_front_m']:.2f} m, because the held drag's "
-                 f"stability bound caps the drag of {100 * pf['drag_limited_share']:.0f} % of the "
-                 "grains")
-    pw = ys.get("paper_faithful", {}).get("paper_window", {})
-    if "paper" in pw and "default" in pw:
-        t = max(set(pw["paper"]["at"]) & set(pw["default"]["at"]), key=float)
-        pp, dd = pw["paper"]["at"][t], pw["default"]["at"][t]
-        note += (f"; at the paper's stiffness and steps (HB&P, paper-window tier, {t} s) the "
-                 f"paper-faithful scheme holds the column (granular front "
-                 f"{pp['granular_front_m']:.2f} m, back wall {pp['back_wall_surface_H']:.3f} H) "
-                 f"and the verified drag flows ({dd['granular_front_m']:.2f} m, "
-                 f"{dd['back_wall_surface_H']:.3f} H)")
-    packing = ys.get("packing", {}).get("HB&P", {})
-    dense, loose = packing.get("0.6056:0.1"), packing.get("0.56:0.7")
-    if dense and loose:
-        def share(o):
-            return o["grain_pe_released_J"] / o["grain_pe_initial_J"]
-
-        note += (f"; the evidence supports the verified drag: a loose HB&P sample (fraction "
-                 f"{loose['settled_sample_fraction']:.3f}) releases "
-                 f"{share(loose) / share(dense):.1f} times the dense one's share of its energy and "
-                 f"runs {100 * (loose['granular_front_m'] / dense['granular_front_m'] - 1):.0f} % "
-                 "farther, so the dense packing, not the drag, holds the column")
-    return note
+            "sphere and bed checks, results/yield_stress/); not converged in the fluid sampling: "
+            f"the quick {s.paper_name} releases {float(cell['released_J']):.2f} J by 0.5 s with "
+            f"`cell` sampling and {float(point['released_J']):.2f} J with `cellPoint`")
+    free = rows.get("hb_yield_stress_0/2")
+    if tag == "hb" and free:
+        note += f" (the same liquid without its yield stress: {float(free['released_J']):.2f} J)"
+    return note + (": sub-cell shear counted as slip meets the plastic drag's yield force "
+                   "(results/convergence/README.md, \"What holds the yield-stress mixtures\")")
 
 
 def tiers_of(*scenes):
@@ -682,7 +666,8 @@ def yield_stress_section():
     runs = ys.get("paper_faithful", {}).get("runs", {})
     lines = ["## HB&P and B&P: the verified drag against the paper's scheme", "",
              f"From results/yield_stress/summary.json (`{ys.get('command', '')}`; quick tier, same "
-             "settled sample). The default drag viscosity (`slip`) passes the single-grain checks "
+             "settled sample, the plain void-fraction split whose jumps moved these mixtures with "
+             "the exchange interval, results/convergence/README.md). The default drag viscosity (`slip`) passes the single-grain checks "
              "that `resolved` fails; the paper's scheme as far as it is known (held drag, resolved "
              "viscosity, d(eps)/dt off) lets the columns flow only because the held drag's "
              "stability bound caps most grains' drag. The evidence supports the default.", "",
