@@ -15,5 +15,5 @@ run() {  # name, then --set entries
 run instant
 run lifted_1 --set sceneProperties.gate.removal=lifted --set sceneProperties.gate.speed=1
 run lifted_4.53 --set sceneProperties.gate.removal=lifted --set sceneProperties.gate.speed=4.53
-/usr/bin/python3 "$root/results/runout_scaling/gate_table.py" "$work" \
-  "$root/results/runout_scaling/gate.csv" instant lifted_1 lifted_4.53
+/usr/bin/python3 "$root/results/gate_table.py" "$work" \
+  "$root/results/runout_scaling/gate.csv" P instant lifted_1 lifted_4.53
