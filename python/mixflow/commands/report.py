@@ -307,18 +307,18 @@ def locked(s):
         return ""
     rows = mobility_rows()
     tag = "hb" if s.name == "HB+P" else "b"
-    cell, point = rows.get(f"{tag}_cell_0.06/2"), rows.get(f"{tag}_cellPoint_0.06/2")
-    if not (cell and point):
+    def energy(variant):
+        r = rows.get(f"{tag}_{variant}/2")
+        return None if r is None else float(r["released_J"])
+    e = {v: energy(v) for v in ("cell_0.06", "cellPoint_0.06", "cell_0.03", "cellPoint_0.03")}
+    if None in e.values():
         return ""
-    note = ("verified drag (dragViscosity slip, implicit: passes the single-grain, power-law "
-            "sphere and bed checks, results/yield_stress/); not converged in the fluid sampling: "
-            f"the quick {s.paper_name} releases {float(cell['released_J']):.2f} J by 0.5 s with "
-            f"`cell` sampling and {float(point['released_J']):.2f} J with `cellPoint`")
-    free = rows.get("hb_yield_stress_0/2")
-    if tag == "hb" and free:
-        note += f" (the same liquid without its yield stress: {float(free['released_J']):.2f} J)"
-    return note + (": sub-cell shear counted as slip meets the plastic drag's yield force "
-                   "(results/convergence/README.md, \"What holds the yield-stress mixtures\")")
+    return ("verified drag (dragViscosity slip, implicit: passes the single-grain, power-law "
+            "sphere and bed checks, results/yield_stress/); not converged in the fluid sampling "
+            f"or the cell size: the quick {s.paper_name} releases {e['cell_0.06']:.2f} J by 0.5 s "
+            f"with `cell` sampling and {e['cellPoint_0.06']:.2f} J with `cellPoint` on 0.06 m "
+            f"cells, {e['cell_0.03']:.2f} / {e['cellPoint_0.03']:.2f} J on 0.03 m cells "
+            "(results/convergence/README.md, \"What holds the yield-stress mixtures\")")
 
 
 def tiers_of(*scenes):
