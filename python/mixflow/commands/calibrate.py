@@ -293,7 +293,11 @@ def main(argv=None):
         keep = kept["pressure"] == res["pressure"] and all(
             kept["drifts"][q]["value"] == r["value"] for q, r in res["drifts"].items())
     if not keep:
-        cd.write_target(bulk, res, case)
+        try:
+            cd.write_target(bulk, res, case)
+        except cd.InputError as e:  # a drift the bulk model cannot take: the table above says which
+            print(f"mixflow calibrate: error: {e}", file=sys.stderr)
+            return 2
     with open(cal_json) as f:
         written = json.load(f)
     if not (keep and bulk_finished(bulk, end)):
