@@ -121,28 +121,29 @@ std::string LiftedGate::parkedHeightFormula(double dt, long step0) const {
   return "((" + h + ")<" + p + ")*(" + h + ")+((" + h + ")>=" + p + ")*" + p;
 }
 
-std::vector<std::string> LiftedGate::parkedCommands(const std::string& stlFile, double dt) const {
+std::vector<std::string> LiftedGate::plateCommands(const std::string& stlFile,
+                                                   const std::string& meshOptions,
+                                                   const std::string& speed) const {
   const Scene& s = scene_;
-  return {"variable gateLift equal " + parkedHeightFormula(dt, 0),
-          "fix gateMesh all mesh/surface file " + stlFile + " type " + std::to_string(kWallType) +
-              " move 0 ${gateLift} 0",
+  return {"fix gateMesh all mesh/surface file " + stlFile + " type " + std::to_string(kWallType) +
+              meshOptions,
           "fix wGateLifted all wall/gran " + contactModel(s.particles) +
               " mesh n_meshes 1 meshes gateMesh " + contactSettings(s.dem.limitForce),
-          "variable gateSpeed equal " + speedFormula(dt, 0, true),
-          "variable gateStill equal 0",
+          "variable gateSpeed equal " + speed, "variable gateStill equal 0",
           "fix gateMove all move/mesh mesh gateMesh linear/variable v_gateStill v_gateSpeed "
           "v_gateStill"};
 }
 
+std::vector<std::string> LiftedGate::parkedCommands(const std::string& stlFile, double dt) const {
+  std::vector<std::string> c = {"variable gateLift equal " + parkedHeightFormula(dt, 0)};
+  for (auto& line : plateCommands(stlFile, " move 0 ${gateLift} 0", speedFormula(dt, 0, true)))
+    c.push_back(line);
+  return c;
+}
+
 std::vector<std::string> LiftedGate::commands(const std::string& stlFile, double dt,
                                               long step0) const {
-  const Scene& s = scene_;
-  return {"fix gateMesh all mesh/surface file " + stlFile + " type " + std::to_string(kWallType),
-          "fix wGateLifted all wall/gran " + contactModel(s.particles) +
-              " mesh n_meshes 1 meshes gateMesh " + contactSettings(s.dem.limitForce),
-          "variable gateSpeed equal " + speedFormula(dt, step0), "variable gateStill equal 0",
-          "fix gateMove all move/mesh mesh gateMesh linear/variable v_gateStill v_gateSpeed "
-          "v_gateStill"};
+  return plateCommands(stlFile, "", speedFormula(dt, step0));
 }
 
 std::vector<std::string> LiftedGate::removeCommands() {

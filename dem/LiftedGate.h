@@ -34,6 +34,8 @@ class LiftedGate {
   // (written with its lower edge at 0) moved to h(t) at the script's step, then at dh/dt until
   // its edge reaches removalHeight(), where it stays.
   std::vector<std::string> parkedCommands(const std::string& stlFile, double dt) const;
+
+ private:
   // The equal-style formula of dh/dt at t = (step - step0) dt (piecewise constant), zero from
   // parkTime on when parked.
   std::string speedFormula(double dt, long step0, bool parked = false) const;
@@ -41,8 +43,10 @@ class LiftedGate {
   std::string parkedHeightFormula(double dt, long step0) const;
   // The first time h(t) reaches removalHeight() (< 0: never).
   double parkTime() const;
+  // The mesh (from stlFile, with meshOptions), its wall and its motion at the formula speed.
+  std::vector<std::string> plateCommands(const std::string& stlFile, const std::string& meshOptions,
+                                         const std::string& speed) const;
 
- private:
   const Scene& scene_;
   double plateHeight_ = 0, removalHeight_ = 0;
 };

@@ -29,6 +29,15 @@ def write_case(case, scene, cfd, end, write_interval):
         f.write(hdr % "controlDict" + f"endTime {end};\nwriteInterval {write_interval};\n")
 
 
+def add_program_arguments(parser, root):
+    """--prepare, --solver and --blockmesh, the programs run_case takes from its namespace (the
+    build's under ROOT, Debian's blockMesh); a serial run's WM_PROJECT_DIR as CTest exports it."""
+    parser.add_argument("--prepare", default=os.path.join(root, "build/bin/mixflowPrepare"))
+    parser.add_argument("--solver", default=os.path.join(root, "build/bin/mixflowFoam"))
+    parser.add_argument("--blockmesh", default="/usr/bin/blockMesh")
+    os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+
+
 def run_case(a, case, np=1, solver=None):
     """mixflowPrepare, blockMesh, the solver (a.solver, mixflowFoam, unless given; serial or np
     ranks). Returns the time series."""

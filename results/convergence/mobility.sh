@@ -11,33 +11,21 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/mobility}")
-run() {  # variant liquid-case (W+P: the case's water) exchangeEvery, then run_mixture_case.py options
-  local variant=$1 liquid=$2 n=$3 w="$work/$1/$3"
-  shift 3
-  [ -f "$w/done" ] && return
-  rm -rf "$w" && mkdir -p "$(dirname "$w")"
-  local liquid_opt=()
-  [ "$liquid" != W+P ] && liquid_opt=(--liquid-case "$liquid")
-  # A run that fails the runner's conservation checks is kept and marked (checks_failed).
-  /usr/bin/python3 "$root/tests/coupling/run_mixture_case.py" --root "$root" \
-    --bindir "${MIXFLOW_BUILD:-$root/build}/bin" --workdir "$w" "${liquid_opt[@]}" \
-    --end 0.5 --couple exchangeEvery="$n" "$@" >"$w.log" 2>&1 || touch "$w/checks_failed"
-  touch "$w/done"
-}
+. "$root/results/convergence/quick_run.sh"
 for ys in 0 3 10 30.002; do
-  run "hb_yield_stress_$ys" HB+P 2 --scene liquid.yieldStress="$ys"
+  quick_run "hb_yield_stress_$ys" HB+P 2 --scene liquid.yieldStress="$ys"
 done
 for liquid in HB+P B+P W+P; do
   tag=$(echo "$liquid" | tr 'A-Z+' 'a-z_' | sed 's/_p$//')
   for dx in 0.04 0.06 0.08; do
-    run "${tag}_cell_$dx" "$liquid" 2 --couple interpolation=cell --cfd cellSize="$dx"
-    run "${tag}_cellPoint_$dx" "$liquid" 2 --couple interpolation=cellPoint --cfd cellSize="$dx"
+    quick_run "${tag}_cell_$dx" "$liquid" 2 --couple interpolation=cell --cfd cellSize="$dx"
+    quick_run "${tag}_cellPoint_$dx" "$liquid" 2 --couple interpolation=cellPoint --cfd cellSize="$dx"
   done
 done
-run hb_cellPoint_0.06 HB+P 1 --couple interpolation=cellPoint --cfd cellSize=0.06
+quick_run hb_cellPoint_0.06 HB+P 1 --couple interpolation=cellPoint --cfd cellSize=0.06
 for sampling in cell cellPoint; do  # the plastic mixtures towards cells of one diameter
-  run "hb_${sampling}_0.03" HB+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
-  run "b_${sampling}_0.03" B+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
+  quick_run "hb_${sampling}_0.03" HB+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
+  quick_run "b_${sampling}_0.03" B+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
 done
 /usr/bin/python3 "$root/results/convergence/quick_ladder_csv.py" "$work" \
   "$root/results/convergence/mobility.csv"

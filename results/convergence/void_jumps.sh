@@ -8,16 +8,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/void_jumps}")
-run() {  # variant liquid-case N smoothing
-  local variant=$1 liquid=$2 n=$3 s=$4 w="$work/$1/$3"
-  [ -f "$w/done" ] && return
-  rm -rf "$w" && mkdir -p "$(dirname "$w")"
-  # A run that fails the runner's conservation checks is kept and marked (checks_failed).
-  /usr/bin/python3 "$root/tests/coupling/run_mixture_case.py" --root "$root" \
-    --bindir "${MIXFLOW_BUILD:-$root/build}/bin" --workdir "$w" --liquid-case "$liquid" \
-    --end 0.5 --couple exchangeEvery="$n" --couple dividedCoeffs.smoothing="$s" >"$w.log" 2>&1 ||
-    touch "$w/checks_failed"
-  touch "$w/done"
+. "$root/results/convergence/quick_run.sh"
+run() {  # variant liquid-case exchangeEvery smoothing
+  quick_run "$1" "$2" "$3" --couple dividedCoeffs.smoothing="$4"
 }
 for n in 25 6 2 1; do
   run hb_plain HB+P $n 0

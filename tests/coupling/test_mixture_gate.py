@@ -41,12 +41,9 @@ def main():
     root, bindir, work = sys.argv[1:4]
     sys.path.insert(0, os.path.join(root, "python"))
     from mixflow.observables import vtk_points, vtk_series
-    ok = True
-
-    def check(cond, msg):
-        nonlocal ok
-        print(("ok   " if cond else "FAIL ") + msg)
-        ok &= bool(cond)
+    from mixflow.synthcase import checker
+    failures = []
+    check = checker(failures)
 
     held = run(root, bindir, os.path.join(work, "held"), 0)
     worst = max(float(vtk_points(p)[:, 0].max()) for _, p in vtk_series(held))
@@ -59,8 +56,8 @@ def main():
     check(grains > L + 2 * D, f"lifted at 1 m/s: granular front {grains:.3f} m beyond L + 2 d")
     front = last(os.path.join(lifted, "postProcessing", "liquid", "timeSeries.csv"), "front_bed_m")
     check(front > L + 2 * DX, f"lifted at 1 m/s: liquid front {front:.3f} m beyond the plate")
-    if not ok:
-        sys.exit("FAIL")
+    if failures:
+        sys.exit("FAIL: " + "; ".join(failures))
     print("PASS")
 
 

@@ -77,15 +77,12 @@ def main():
     p.add_argument("--cell", type=float, default=0.01, help="cell size (m)")
     p.add_argument("--end", type=float, default=0.6, help="end time (s): past the wall arrival")
     p.add_argument("--work", default="/tmp/lobovsky_gate")
-    p.add_argument("--prepare", default=os.path.join(ROOT, "build/bin/mixflowPrepare"))
-    p.add_argument("--solver", default=os.path.join(ROOT, "build/bin/mixflowFoam"))
-    p.add_argument("--blockmesh", default="/usr/bin/blockMesh")
+    rlc.add_program_arguments(p, ROOT)
     p.add_argument("--out", default=os.path.join(ROOT, "results/pure_liquids/gate"))
     a = p.parse_args()
     a.work = os.path.abspath(a.work)
     os.makedirs(a.work, exist_ok=True)
     os.makedirs(a.out, exist_ok=True)
-    os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # what CTest exports
 
     summary = []
     for hmm in (int(v) for v in a.heights.split(",")):

@@ -50,14 +50,11 @@ def main():
     p.add_argument("--speeds", default="1,2,4.53", help="lift speeds (m/s), comma-separated")
     p.add_argument("--cells", type=int, default=40, help="cells over a")
     p.add_argument("--work", default="/tmp/mm_gate")
-    p.add_argument("--prepare", default=os.path.join(ROOT, "build/bin/mixflowPrepare"))
-    p.add_argument("--solver", default=os.path.join(ROOT, "build/bin/mixflowFoam"))
-    p.add_argument("--blockmesh", default="/usr/bin/blockMesh")
+    rlc.add_program_arguments(p, ROOT)
     p.add_argument("--out", default=os.path.join(ROOT, "results/pure_liquids/gate"))
     a = p.parse_args()
     a.work = os.path.abspath(a.work)
     os.makedirs(a.out, exist_ok=True)
-    os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
     ref = rlc.read_martin_moyce(os.path.join(ROOT, "tests", "reference",
                                              "martin_moyce_1952_n2eq1_front_height.csv"))["front_Z"]
     gates = [("instant", "")] + [(f"lifted_{v:g}", f"removal lifted; speed {v:g};")

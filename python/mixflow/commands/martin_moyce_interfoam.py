@@ -80,10 +80,8 @@ def main():
     p.add_argument("--work", default="/tmp/mm_interfoam")
     p.add_argument("--cells", type=int, default=40, help="cells per column side (test: 40)")
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--prepare", default=os.path.join(ROOT, "build/bin/mixflowPrepare"))
-    p.add_argument("--solver", default=os.path.join(ROOT, "build/bin/mixflowFoam"))
+    rlc.add_program_arguments(p, ROOT)
     p.add_argument("--interfoam", default="/usr/bin/interFoam")
-    p.add_argument("--blockmesh", default="/usr/bin/blockMesh")
     p.add_argument("--reference", default=os.path.join(
         ROOT, "tests", "reference", "martin_moyce_1952_n2eq1_front_height.csv"))
     p.add_argument("--out", default=os.path.join(ROOT, "results/pure_liquids/"
@@ -91,7 +89,6 @@ def main():
     a = p.parse_args()
     a.work = os.path.abspath(a.work)
     os.makedirs(a.work, exist_ok=True)
-    os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # what CTest exports
 
     lib = os.path.join(a.work, "libliquidObservables.so")
     build_observables_lib(a.build, lib)

@@ -37,12 +37,17 @@ PAPER_SAVAGE_B = list(PAPER["savage_interval_BP"])
 TIMES = (0.5, 1.0, 2.0, 3.0)  # the issue's and the paper's observation times (s)
 
 
+def savage_window(s):
+    """The longest run of N_sav > 0.1 at x = 0.8 m (Eq. 16 as printed), None without one."""
+    sv = obs.savage(s)
+    return obs.collision_interval(sv[0], np.nan_to_num(sv[1], nan=0.0)) if sv else None
+
+
 def scene_observables(s):
     """Fronts, energies and back-wall height at TIMES, arrival, subcritical time and the longest
     Savage collisional interval at x = 0.8 m."""
     row = observables(s, TIMES)
-    sv = obs.savage(s)
-    window = obs.collision_interval(sv[0], np.nan_to_num(sv[1], nan=0.0)) if sv else None
+    window = savage_window(s)
     row["savage_interval_s"] = list(window) if window else None
     return row
 
@@ -134,8 +139,7 @@ def main():
         if sv:
             ax[2].plot(sv[0], sv[1], label=f"{p} (Eq. 16, d)")
             ax[2].plot(sv[0], iv, ":", label=f"{p} (Iverson, d²/h)")
-            n_ok = np.nan_to_num(sv[1], nan=0.0)
-            summary["savage_collisional_interval_s"][p] = obs.collision_interval(sv[0], n_ok)
+            summary["savage_collisional_interval_s"][p] = savage_window(s)
         summary["scenes"][p] = {
             "tier": s.tier, "case": n, "width_m": s.width,
             "simulated_to_s": s.t_end(), "liquid_arrival_at_1.38m_s": t0,
