@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "Dictionary.h"
+#include "DriftAlgebra.h"
 
 namespace mixflow {
 
@@ -23,7 +24,8 @@ Schema makeSchema() {
           wordParam("pressureClosure", "porePressureRatio", {"porePressureRatio", "lambdaP"},
                     "how p_m splits into the pore pressure and the effective stress "
                     "(bulkProperties `drifts.pressure`)"),
-          scalarParam("porePressureRatio", 0, Range{-1.0, 1.0, false, true}, "",
+          scalarParam("porePressureRatio", 0,
+                      Range{bulk::kPoreRatioMin, bulk::kPoreRatioMax, false, true}, "",
                       "χ of pressureClosure porePressureRatio"),
           wordParam("solidRheology", solid, {solid, "muI"}, "the solid's law"),
           requiredScalar("solidViscosity", Range::nonNegative(), "m²/s", "ν_s").only({solid}),

@@ -128,9 +128,10 @@ inline double fluidPressureFactor(double alphaS, const Drifts& d, const PorePres
     return m.rhoF * d.lambdaP / lambdaCoefficients(alphaS, d).p;
   return m.rhoF + d.chi * alphaS * (m.rhoS - m.rhoF);
 }
-// The ratio's bounds: chi < 1 keeps a positive effective stress (1 liquefies the grains); below
-// -1 the suction would exceed the grains' buoyant load (the effective stress more than doubled).
-inline constexpr double kPoreRatioMin = -1.0;
+// The ratio's bounds: chi < 1 keeps a positive effective stress (1 liquefies the grains); chi < -1
+// is a suction beyond the grains' buoyant load, which a dilating column in a yield-stress liquid
+// carries (B&P at the truth tier: -2.0 over its bins); -10 only bounds a mistyped value.
+inline constexpr double kPoreRatioMin = -10.0;
 inline constexpr double kPoreRatioMax = 1.0;  // excluded
 
 // Mixture viscosity coefficients Lambda_eta_u = nu_s alpha_s + lambda_u nu_f alpha_f (and _w)

@@ -45,7 +45,7 @@ Schema makeSchema() {
           scalarParam("drifts.porePressureRatio", b.porePressureRatio,
                       Range{bulk::kPoreRatioMin, bulk::kPoreRatioMax, false, true}, "",
                       "χ = (P_f − ρ_f p_m) / (α_s (ρ_s − ρ_f) p_m): 0 hydrostatic pore liquid, 1 "
-                      "liquefied, < 0 suction down to the grains' buoyant load")
+                      "liquefied, < 0 suction (−1: as large as the grains' buoyant load)")
               .only({"porePressureRatio"}),
           scalarParam("drifts.lambdaP", b.lambdaP, Range::closed(-1e3, 1e3), "", "p_f = λ_p p_s")
               .only({"lambdaP"})

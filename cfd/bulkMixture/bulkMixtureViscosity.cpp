@@ -87,7 +87,7 @@ Foam::autoPtr<Foam::volScalarField> Foam::viscosityModels::bulkMixture::readDrif
                          U_.mesh()));
   f->correctBoundaryConditions();  // coupled patches: the face values of the cells read
   // The constants' range (prepare/BulkModel.cpp): Lambda = 1 / (alpha_s + lambda alpha_f) finite;
-  // the pore-pressure ratio in [-1, 1).
+  // the pore-pressure ratio in [kPoreRatioMin, kPoreRatioMax) = [-10, 1).
   const bool ratio = name == poreFieldName() && pore_.closure == mixflow::bulk::PoreClosure::ratio;
   const scalar lo =
       ratio ? mixflow::bulk::kPoreRatioMin : mixflow::bulk::driftLowerBound(alphaS_, -1e3);

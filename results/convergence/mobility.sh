@@ -3,11 +3,13 @@
 # exchange every 2 DEM steps, 0.5 s). HB&P's liquid at yield stress tau_c 0, 3, 10, 30.002 Pa with
 # its kappa and n (mobility must fall monotonically); the fluid sampled at the grain by cell
 # (the cell's values) and cellPoint (interpolated) sampling, at cells of 0.04, 0.06 (the case's)
-# and 0.08 m, for HB&P, B&P and W&P, and 0.03 m for HB&P and B&P; HB&P with cellPoint at one DEM step per exchange. Sub-cell
+# and 0.08 m, for HB&P, B&P and W&P, and 0.03 m for HB&P and B&P; HB&P with cellPoint at one DEM step per exchange;
+# the plastic liquids' viscosity cap (mu_0) at 1e3, 1e4 (the cases') and 1e5 Pa s with either
+# sampling at 0.06 m. Sub-cell
 # shear that the sampling counts as slip gives a plastic drag spurious strength. Writes
 # WORK/<variant>/<exchangeEvery>/ and results/convergence/mobility.csv (energy released by the
 # grains, granular front, their kinetic energy at 0.5 s).
-# Usage: mobility.sh [WORK] (default runs/mobility). About 45 min of one core.
+# Usage: mobility.sh [WORK] (default runs/mobility). About 1 h of one core.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/mobility}")
@@ -26,6 +28,15 @@ quick_run hb_cellPoint_0.06 HB+P 1 --couple interpolation=cellPoint --cfd cellSi
 for sampling in cell cellPoint; do  # the plastic mixtures towards cells of one diameter
   quick_run "hb_${sampling}_0.03" HB+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
   quick_run "b_${sampling}_0.03" B+P 2 --couple interpolation="$sampling" --cfd cellSize=0.03
+done
+for cap in 1e3 1e5; do  # the regularisation at vanishing shear; 1e4 is the *_0.06 runs above
+  for liquid in HB+P B+P; do
+    tag=$(echo "$liquid" | tr 'A-Z+' 'a-z_' | sed 's/_p$//')
+    for sampling in cell cellPoint; do
+      quick_run "${tag}_${sampling}_cap$cap" "$liquid" 2 --couple interpolation="$sampling" \
+        --cfd cellSize=0.06 --scene liquid.viscosityCap="$cap"
+    done
+  done
 done
 /usr/bin/python3 "$root/results/convergence/quick_ladder_csv.py" "$work" \
   "$root/results/convergence/mobility.csv"

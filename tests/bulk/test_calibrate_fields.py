@@ -65,15 +65,16 @@ boundary
 
 def expected(h5, constants, windows, how):
     """Per drift the cell values recomputed from the extraction: the wls selection (valid mask,
-    alpha_s >= 0.1, solid speed >= FLOWING sqrt(g H), particle-equivalent weights), per bin
+    alpha_s >= 0.1, for the velocity drifts solid speed >= FLOWING sqrt(g H) (the pressure drift
+    takes every bin: --pressure-bins all), particle-equivalent weights), per bin
     sum_t w lambda / sum_t w, looked up at the cell centres of the uniform target mesh."""
     d = load(h5)
     f, valid, w = d["fields"], d["valid"], d["counts"]["particle_equivalents"]
     H = float(d["attrs"]["sample_height_m"])
     t0, t1 = (float(v) for v in windows.split(":"))
     win = (d["windows"]["t0"] >= t0 - 1e-9) & (d["windows"]["t1"] <= t1 + 1e-9)
-    flowing = (win[:, None, None] & (f["alpha_s"] >= 0.1) &
-               (np.hypot(f["u_s"], f["w_s"]) >= FLOWING * np.sqrt(9.81 * H)))
+    dense = win[:, None, None] & (f["alpha_s"] >= 0.1)
+    flowing = dense & (np.hypot(f["u_s"], f["w_s"]) >= FLOWING * np.sqrt(9.81 * H))
     pairs = {"lambda_u": (f["u_s"], f["u_f"], valid["lambda_u"]),
              "lambda_w": (f["w_s"], f["w_f"], valid["lambda_w"]),
              "lambda_p": (f["p_s"] / dd.RHO_S, f["p_f"] / dd.RHO_F, valid["lambda_p_density"])}
@@ -82,7 +83,7 @@ def expected(h5, constants, windows, how):
     out, bins = {}, {}
     for q, (xs, ys, v) in pairs.items():
         r = ys / xs
-        m = flowing & v & np.isfinite(r) & (w > 0)
+        m = (dense if q == "lambda_p" else flowing) & v & np.isfinite(r) & (w > 0)
         if how == "wls":
             num = np.where(m, w * xs * ys, 0).sum(axis=0)
             den = np.where(m, w * xs * xs, 0).sum(axis=0)

@@ -37,7 +37,8 @@ def main():
     foamcase.run_tool(["mixflowPrepare", "-case", case_a], "test_stage_series")
     foamcase.run_tool(["blockMesh", "-case", case_a], "test_stage_series")
     rec = {}
-    a = argparse.Namespace(work=work, flowing_factor="0.1")
+    a = argparse.Namespace(work=work, flowing_factor="0.1", pressure="porePressureRatio",
+                           vertical="auto", pressure_bins="all")
     bulk_stages.drift_stage(rec, "C_t", ["--fields", "--field-mean", "wls", "--per-window"],
                             case_a, dem, REF_FRONT, a)
     r = rec.get("C_t", {})

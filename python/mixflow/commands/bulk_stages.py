@@ -1,7 +1,10 @@
 """The bulk model at its calibration stages against the CFD-DEM reference, per mixture scene.
 
 usage: mixflow bulk-stages [--scenes W+P,HB+P,B+P] [--cell-size 0.075]
-          [--estimators wls,median] [--field-mean wls] [--window-span 5] [--reference runs/reference]
+          [--estimators wls,median] [--field-mean wls] [--window-span 5]
+          [--pressure porePressureRatio|lambdaP] [--vertical auto|fit|isotropic]
+          [--pressure-bins all|flowing]
+          [--reference runs/reference]
           [--solid-from cases/P-bulk] [--work runs/bulk-stages]
           [--out results/bulk_model/stages.json]
 
@@ -11,7 +14,9 @@ nu_s 0.03 m2/s); the same case with the solid block of --solid-from's constant/b
 (stage A: lambda = 1, the solid rheology calibrated on the dry scene P by mixflow calibrate-solid,
 the bulk model's default); then stage A's case with the constant drifts calibrated from the
 CFD-DEM reference run's extraction, once per --estimators entry (stage B: `mixflow calibrate-drifts
-REFERENCE/<scene> --target CASE --flowing-factor F --estimator E`, E wls (key B) or median (key
+REFERENCE/<scene> --target CASE --flowing-factor F --pressure P --vertical V --pressure-bins B
+--estimator E`, the pore-pressure closure P, the vertical drift's rule V and the pressure's bins B
+as `mixflow calibrate`'s, E wls (key B) or median (key
 B_median); the reference run needs postProcessing/mixture/mixture.h5, e.g. from
 mixflow mixture-lambdas) and run again (`./Allrun`); stage C: stage A's case with the drift
 fields lambda(x, y) on its mesh (`calibrate_drifts.py ... --fields --field-mean M`,
@@ -60,8 +65,10 @@ def drift_stage(rec, key, options, case_a, ref, ref_front, a):
     REC[KEY] (its result, or why it did not run), REC[KEY + '_calibration'] (the calibration's
     printout) and REC[KEY + '_drifts'] (its JSON)."""
     case = fresh_copy(case_a, os.path.join(a.work, key, os.path.basename(case_a)))
-    cal = run(command("calibrate-drifts") + [ref,
-               "--target", case, "--flowing-factor", a.flowing_factor] + options, fatal=False)
+    cal = run(command("calibrate-drifts") + [ref, "--target", case, "--flowing-factor",
+               a.flowing_factor, "--pressure", a.pressure, "--vertical", a.vertical,
+               "--pressure-bins", a.pressure_bins] + options,
+              fatal=False)
     if cal is None:  # e.g. a drift outside the bulk model's range: recorded, not run
         rec[key] = {"error": "calibrate_drifts.py refused the drifts (its message above)"}
         return
@@ -104,6 +111,16 @@ def main():
     ap.add_argument("--field-mean", default="wls",
                     help="stages C and C_t: calibrate_drifts.py --field-mean (wls or ratio; ratio "
                     "lets W&P's lambda_w reach the range limit and the run diverge)")
+    ap.add_argument("--pressure", default="porePressureRatio",
+                    help="calibrate_drifts.py --pressure of stages B, C and C_t (default "
+                    "porePressureRatio, chi without the pole of Lambda_p, as mixflow calibrate; "
+                    "lambdaP for the pressure drift of Pokhrel et al.)")
+    ap.add_argument("--vertical", default="auto",
+                    help="calibrate_drifts.py --vertical of stages B, C and C_t (default auto, as "
+                    "mixflow calibrate: lambda_w's fit where well-posed, else the isotropic drift)")
+    ap.add_argument("--pressure-bins", default="all",
+                    help="calibrate_drifts.py --pressure-bins of stages B, C and C_t (default all: "
+                    "the pressure closure over every mixture bin, the column at rest too)")
     ap.add_argument("--reference", default=os.path.join(ROOT, "runs", "reference"))
     ap.add_argument("--solid-from", default=os.path.join(ROOT, "cases", "P-bulk"))
     ap.add_argument("--window-span", type=int, default=5,
@@ -121,7 +138,9 @@ def main():
         sys.exit(f"bulk_stages: --solid-from {a.solid_from}: {bulkprops.path(a.solid_from)} has no "
                  "solid { ... } block (mixflow calibrate-solid --target writes one)")
     out = {"command": "mixflow bulk-stages " + " ".join(sys.argv[1:]),
-           "cell_size_m": float(a.cell_size), "solid": solid, "solid_A0": ESTIMATE,
+           "cell_size_m": float(a.cell_size), "pressure": a.pressure, "vertical": a.vertical,
+           "pressure_bins": a.pressure_bins,
+           "solid": solid, "solid_A0": ESTIMATE,
            "solid_from": os.path.relpath(os.path.abspath(a.solid_from), ROOT), "scenes": {}}
     for scene in a.scenes.split(","):
         ref = os.path.join(a.reference, scene)

@@ -3,7 +3,7 @@
 
 usage: mixflow calibrate CASE [--work DIR] [--end T] [--skip-existing] [--cell-size DX]
            [--pressure porePressureRatio|lambdaP] [--estimator wls|median|flux]
-           [--vertical auto|fit|isotropic] [--flowing-factor F]
+           [--vertical auto|fit|isotropic] [--flowing-factor F] [--pressure-bins all|flowing]
 
 Steps, each into WORK (default CASE-calibration):
   1. extraction: mixflowExtract -case CASE -overwrite with CASE/system/extractDict; a case without
@@ -238,6 +238,9 @@ def main(argv=None):
                     "well-posed, else the isotropic drift)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="calibrate-drifts --flowing-factor (lower it for a slow flow)")
+    ap.add_argument("--pressure-bins", default="all",
+                    help="calibrate-drifts --pressure-bins (default all: the pressure closure "
+                    "over every mixture bin, the column at rest too)")
     a = ap.parse_args(argv)
     case = os.path.abspath(a.case)
     work = os.path.abspath(a.work or case.rstrip(os.sep) + "-calibration")
@@ -280,7 +283,8 @@ def main(argv=None):
     try:
         alpha, _ = cd.target_solid_fraction(bulk, cd.check_target(bulk))
         res = cd.calibrate(h5, a.estimator, a.flowing_factor, pressure=a.pressure,
-                           vertical=a.vertical, solid_fraction=alpha)
+                           vertical=a.vertical, solid_fraction=alpha,
+                           pressure_bins=a.pressure_bins)
     except cd.InputError as e:
         print(f"mixflow calibrate: error: {e}; for a slow flow lower --flowing-factor, or the "
               f"extraction's thresholds.minVelocity / minPressure in {dict_path} (then run again "

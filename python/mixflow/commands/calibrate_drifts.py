@@ -7,15 +7,18 @@ porePressureRatio;`).
 usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median|flux]
            [--pressure lambdaP|porePressureRatio] [--pore-reference mixture|surface]
            [--vertical fit|isotropic|auto]
-           [--flowing-factor 0.05] [--min-solid-fraction 0.1] [--windows T0:T1]
+           [--flowing-factor 0.05] [--pressure-bins all|flowing] [--min-solid-fraction 0.1]
+           [--windows T0:T1]
            [--weights particles|samples|none] [--bootstrap 1000] [--seed 1] [--json FILE]
            [--fields [--per-window [--window-span K]]] [--field-mean wls|ratio]
 
 SOURCE: a case directory (its postProcessing/mixture/mixture.h5, made by mixflowExtract) or an
 .h5 file. The bins used (the same for both estimators) are, in the windows inside [T0, T1]: the
-extractor's valid_lambda_<q> mask, alpha_s >= --min-solid-fraction, and flowing: solid speed
+extractor's valid_lambda_<q> mask, alpha_s >= --min-solid-fraction, and, for the velocity drifts
+(and the pressure closure with --pressure-bins flowing), flowing: solid speed
 sqrt(u_s^2 + w_s^2) >= --flowing-factor * sqrt(g H), H the sample height (root attribute
-sample_height_m). Estimators: wls (default), the weighted least-squares slope through the origin
+sample_height_m); the pressure closure takes every such bin, flowing or at rest, by default
+(--pressure-bins all): a column that stands carries its pore pressure too. Estimators: wls (default), the weighted least-squares slope through the origin
 of u_f on u_s (w_f on w_s; p_f/rho_f on p_s/rho_s, the density convention, for lambda_p; the
 excess pore pressure on the grains' load for chi, see --pore-reference); median, the median
 of the per-bin ratios; flux, the flux-consistent ratio sum w alpha_f u_f / sum w alpha_f u_s
@@ -90,8 +93,12 @@ PRESSURE_DEFAULT = "lambdaP"
 # What chi's excess pore pressure is over: the bulk model's rho_f p_m, or the extractor's
 # hydrostatic from the liquid surface (--pore-reference).
 PORE_REFERENCES = ("mixture", "surface")
-# The ratio's range (common/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-1, 1).
-RATIO_MIN, RATIO_MAX = -1.0, 1.0
+# The ratio's range (common/DriftAlgebra.h kPoreRatioMin, kPoreRatioMax): [-10, 1).
+RATIO_MIN, RATIO_MAX = -10.0, 1.0
+# The pressure closure's bins (--pressure-bins): a pore pressure is defined in a bin at rest,
+# where the velocity drifts' ratio is not, so a column that stands is calibrated too.
+PRESSURE_BINS = ("all", "flowing")
+PRESSURE_BINS_DEFAULT = "all"
 ESTIMATORS = ("wls", "median", "flux")
 # The extractor's "outside the mixture" reasons (mixture_extract/DriftCoefficients.h
 # kOutsideMixture), by the names the file gives its bits.
@@ -153,11 +160,13 @@ def check_options(flowing_factor, min_solid_fraction, weights, n_boot, estimator
 
 
 def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
-            pressure=PRESSURE_DEFAULT, pore_reference="mixture", solid_fraction=None):
+            pressure=PRESSURE_DEFAULT, pore_reference="mixture", solid_fraction=None,
+            pressure_bins=PRESSURE_BINS_DEFAULT):
     """Per drift the selected (window, bin) samples: x (solid), y (fluid), w (weight) and block
     (the spatial bin, for the bootstrap); the selection's description; the windows inside
     WINDOWS as (index, t0, t1). SOLID_FRACTION: the bulk model's alpha_s, for chi over the
-    mixture reference."""
+    mixture reference. PRESSURE_BINS: the pressure closure's bins, every mixture bin (all) or the
+    flowing ones as the velocity drifts' (flowing)."""
     f, valid, attrs = d["fields"], d["valid"], d["attrs"]
     for name in ("alpha_s", "u_s", "w_s", "u_f", "w_f", "p_s", "p_f"):
         if name not in f:
@@ -190,7 +199,8 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
     block = np.broadcast_to(np.arange(ny * nx).reshape(1, ny, nx), (nw, ny, nx))
     speed = np.sqrt(f["u_s"] ** 2 + f["w_s"] ** 2)
     with np.errstate(invalid="ignore"):
-        base = win[:, None, None] & (f["alpha_s"] >= min_solid_fraction) & (speed >= speed_min)
+        dense = win[:, None, None] & (f["alpha_s"] >= min_solid_fraction)
+        base = dense & (speed >= speed_min)
     xy = {"lambda_u": (f["u_s"], f["u_f"]), "lambda_w": (f["w_s"], f["w_f"]),
           "lambda_p": (f["p_s"] / rho_s, f["p_f"] / rho_f)}
     masks = dict(valid)
@@ -211,7 +221,8 @@ def samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
         if mask not in masks:
             raise InputError(f"{h5}: no dataset /masks/valid_{mask}")
         x, y = xy[q]
-        m = base & masks[mask] & np.isfinite(x) & np.isfinite(y) & (wt > 0)
+        rows = dense if q == PRESSURE[pressure] and pressure_bins == "all" else base
+        m = rows & masks[mask] & np.isfinite(x) & np.isfinite(y) & (wt > 0)
         if not m.any():
             n_valid = int((masks[mask] & win[:, None, None]).sum())
             raise InputError(
@@ -324,7 +335,7 @@ def bootstrap(s, estimator, n_boot, seed):
 def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0.1,
               windows=(0.0, math.inf), weights="particles", n_boot=1000, seed=1,
               pressure=PRESSURE_DEFAULT, vertical="fit", pore_reference="mixture",
-              solid_fraction=None):
+              solid_fraction=None, pressure_bins=PRESSURE_BINS_DEFAULT):
     """The drifts of SOURCE (case directory or .h5): a dict with per drift the chosen estimate
     ("value"), every estimator, their bootstrap 16/84 % bounds, the per-bin ratio quantiles and
     counts, the velocity drifts' fit quality and well-posedness, lambda_w's rule ("vertical"),
@@ -338,6 +349,8 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
     if pore_reference not in PORE_REFERENCES:
         raise InputError(f"--pore-reference {pore_reference}: allowed "
                          f"{', '.join(PORE_REFERENCES)}")
+    if pressure_bins not in PRESSURE_BINS:
+        raise InputError(f"--pressure-bins {pressure_bins}: allowed {', '.join(PRESSURE_BINS)}")
     h5 = find_h5(source)
     try:
         d = load(h5)
@@ -347,11 +360,12 @@ def calibrate(source, estimator="wls", flowing_factor=0.05, min_solid_fraction=0
     if ratio and pore_reference == "mixture" and solid_fraction is None:
         solid_fraction = float(d["attrs"].get("sample_solid_fraction", 0.0))
     sel, info, selected = samples(h5, d, flowing_factor, min_solid_fraction, windows, weights,
-                                  pressure, pore_reference, solid_fraction)
+                                  pressure, pore_reference, solid_fraction, pressure_bins)
     base = info.pop("_base")
     res = {"h5": h5, "sha256": sha256(h5), "estimator": estimator, "pressure": pressure,
            "selection": dict(info, flowing_factor=flowing_factor,
                              min_solid_fraction=min_solid_fraction, weights=weights,
+                             pressure_bins=pressure_bins,
                              windows_option=[windows[0], None if math.isinf(windows[1])
                                              else windows[1]],
                              bootstrap=n_boot, seed=seed),
@@ -505,7 +519,8 @@ def table(res):
     s = res["selection"]
     lines.append(f"estimator {res['estimator']} (16-84 % bootstrap over spatial bins, "
                  f"{s['bootstrap']} draws); flowing: solid speed >= {s['flowing_speed_m_s']:.4g} "
-                 f"m/s ({s['flowing_factor']:g} sqrt(g H), H {s['sample_height_m']:g} m), "
+                 f"m/s ({s['flowing_factor']:g} sqrt(g H), H {s['sample_height_m']:g} m; "
+                 f"the pressure closure's bins: {s.get('pressure_bins', 'flowing')}), "
                  f"alpha_s >= {s['min_solid_fraction']:g}; windows {s['windows_used'][0]:g}-"
                  f"{s['windows_used'][1]:g} s ({s['windows_used_count']} of "
                  f"{s['windows_in_file']}); weights {s['weights']}")
@@ -609,7 +624,7 @@ def drift_fields(res, centres, lo, hi, how, window=None):
         v[inside] = means[iy[inside], ix[inside]]
         fallback = ~np.isfinite(v)
         v[fallback] = res["drifts"][q]["value"]
-        # chi's range is [-1, 1): its cells are held below 1 by the largest double under it.
+        # chi's range is [-10, 1): its cells are held below 1 by the largest double under it.
         qlo, qhi = ((RATIO_MIN, np.nextafter(RATIO_MAX, -np.inf)) if q == "pore_pressure_ratio"
                     else (lo, hi))
         clipped = (v < qlo) | (v > qhi)
@@ -808,6 +823,10 @@ def main(argv=None):
                     "surface (surface: its pore_pressure_ratio)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="flowing bins: solid speed >= FACTOR sqrt(g H) (default 0.05)")
+    ap.add_argument("--pressure-bins", default=PRESSURE_BINS_DEFAULT,
+                    help="the pressure closure's bins: all (default: every mixture bin, the "
+                    "column at rest too, whose pore pressure is defined where u_f / u_s is not) "
+                    "or flowing (the velocity drifts' bins)")
     ap.add_argument("--min-solid-fraction", type=float, default=0.1)
     ap.add_argument("--windows", default=":", help="T0:T1 (s): windows inside it (default all)")
     ap.add_argument("--weights", default="particles")
@@ -847,7 +866,7 @@ def main(argv=None):
             alpha, _ = target_solid_fraction(a.target, check_target(a.target))
         res = calibrate(a.source, a.estimator, a.flowing_factor, a.min_solid_fraction,
                         parse_windows(a.windows), a.weights, a.bootstrap, a.seed, a.pressure,
-                        a.vertical, a.pore_reference, alpha)
+                        a.vertical, a.pore_reference, alpha, a.pressure_bins)
         print(table(res))
         if a.target:
             for p in write_target(a.target, res, a.source, a.json, a.fields, a.field_mean,

@@ -275,6 +275,10 @@ FIDELITY = {  # (tier, content) -> what the tier changes that may explain a diff
     ("reference", "particles"): "reference tier: grains softened 1000x",
     ("reference", "liquid"): "reference tier: 2-D, no side-wall friction",
     ("reference", "mixture"): "reference tier: 0.12 m periodic slice, 2-D fluid, grains softened 1000x",
+    ("truth", "particles"): "truth tier (the reference tier's dry scenes): grains softened 1000x",
+    ("truth", "liquid"): "truth tier (the reference tier's liquids): 2-D, no side-wall friction",
+    ("truth", "mixture"): "truth tier: 0.12 m periodic slice, 2-D fluid on 0.075 m cells sampled "
+                          "per cell (the paper's stiffness, a converged exchange interval)",
 }
 
 
