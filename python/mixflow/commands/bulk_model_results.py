@@ -129,9 +129,34 @@ def round_trip(out_dir):
                        "--json results/bulk_model/round_trip.json"}
 
 
+def truth_calibrations(out_dir):
+    """Per mixture, `mixflow calibrate` on its truth-tier run (OUT/truth_<scene>/summary.json):
+    the constant drifts with their 16-84 % interval and R^2, the mass-balance residual, the front
+    error at the end and over time, the speed-up, and the command."""
+    cal = {}
+    for scene, name in SCENES.items():
+        path = os.path.join(out_dir, f"truth_{scene}", "summary.json")
+        if not os.path.exists(path):
+            continue
+        d = load(path)
+        c, cmp = d["calibration"], d["comparison"]
+        end = cmp["fronts"][-1]
+        cal[name] = {
+            "drifts": {q: c[q]["value"] for q in ("lambda_u", "lambda_w", "pore_pressure_ratio")},
+            "interval": {q: c[q]["interval_16_84"]
+                         for q in ("lambda_u", "lambda_w", "pore_pressure_ratio")},
+            "r2": {q: c[q].get("r2") for q in ("lambda_u", "lambda_w")},
+            "mass_residual": c["mass_balance"]["residual_over_scale"],
+            "front_error": end["bulk_front_m"] / end["cfd_dem_front_m"] - 1,
+            "front_rms_error": cmp["front_rms_error"],
+            "bulk_solver_cpu_s": d["bulk_solver_cpu_s"], "command": d["command"]}
+    return cal
+
+
 def committed_blocks(out_dir):
     """The summary's blocks made from committed result files alone (no run directory)."""
     return {"round_trip": round_trip(out_dir), "speedup": speedups(),
+            "calibration": truth_calibrations(out_dir),
             "speedup_baseline": "the CFD-DEM solver's CPU time (mixflowCoupled; for P mixflowDem's "
                                 "collapse) measured in the same bench run as the bulk model's"}
 
@@ -143,7 +168,7 @@ def main():
     p.add_argument("--out", default=os.path.join(ROOT, "results", "bulk_model"))
     p.add_argument("--committed-only", action="store_true",
                    help="refresh only the blocks made from committed result files (round_trip, "
-                   "speedup) in OUT/summary.json, keeping the rest: no run directory needed")
+                   "speedup, the truth-tier calibrations) in OUT/summary.json, keeping the rest: no run directory needed")
     a = p.parse_args()
     if a.committed_only:
         path = os.path.join(a.out, "summary.json")
