@@ -32,6 +32,7 @@ from mixflow.synthcase import checker  # noqa: E402
 
 END = 0.6  # s: past demDict velocityProfile.time 0.5 of W+P-quick, so u(y) is compared
 DENOMINATOR_MIN, DRIFT_MAX = 0.01, 1000.0  # the bulk model's range (prepare/BulkModel.cpp)
+RATIO_MIN, RATIO_MAX = -10.0, 1.0  # chi's range (common/DriftAlgebra.h), the upper end open
 
 
 def calibrate(*args):
@@ -84,7 +85,7 @@ def main():
               f"{q} {v:.6g}: written as {drifts[key]} (6 digits)")
         check(p16 <= v <= p84, f"{q} inside its 16-84 % interval [{p16:.4g}, {p84:.4g}]")
         check(c["r2"] is not None and c["r2"] <= 1, f"{q} R^2 {c['r2']} <= 1")
-        ok = -1 <= v < 1 if q == "pore_pressure_ratio" else lo <= v <= DRIFT_MAX
+        ok = RATIO_MIN <= v < RATIO_MAX if q == "pore_pressure_ratio" else lo <= v <= DRIFT_MAX
         check(ok, f"{q} {v:.4g} admissible (alpha_s {alpha:g}: lambda >= {lo:.4g}, chi in [-10, 1))")
     blk = outputs.read_rows(os.path.join(bulk, outputs.LIQUID_SERIES))
     dem = outputs.read_rows(os.path.join(case, outputs.DEM_SERIES))
