@@ -298,6 +298,18 @@ def mobility_rows():
         return {}
 
 
+def truth_sampling(scene):
+    """Energy released by 0.5 s (J/m) with `cell` and `cellPoint` sampling at the truth tier
+    (results/convergence/summary.json, ladder interpolation_truth), or None."""
+    path = os.path.join(suite.ROOT, "results", "convergence", "summary.json")
+    try:
+        with open(path) as f:
+            values = json.load(f)["ladders"]["interpolation_truth"][scene]["values"]
+        return {v: values[v]["0.5s"]["particle_pe_released_J_per_m"] for v in ("cell", "cellPoint")}
+    except (OSError, KeyError, ValueError):
+        return None
+
+
 def locked(s):
     """For a yield-stress mixture run with the verified (implicit) drag: how much its mobility
     owes to the fluid sampling (results/convergence/mobility.csv; '' where not measured)."""
@@ -309,6 +321,14 @@ def locked(s):
         return ""
     if schema.value(cp, "constant/couplingProperties", "dragIntegration") == "held":
         return ""
+    truth = truth_sampling(s.name)
+    if truth:
+        return ("verified drag (dragViscosity slip, implicit: passes the single-grain, power-law "
+                "sphere and bed checks, results/yield_stress/); not converged in the fluid "
+                f"sampling: at the truth tier {s.paper_name} releases {truth['cell']:.3g} J/m by "
+                f"0.5 s with `cell` sampling and {truth['cellPoint']:.3g} J/m with `cellPoint` "
+                "(results/convergence/README.md, \"At the truth tier\"), so this number is the "
+                "`cell` closure's")
     rows = mobility_rows()
     tag = "hb" if s.name == "HB+P" else "b"
     def energy(variant):
