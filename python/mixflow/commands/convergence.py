@@ -193,9 +193,37 @@ def truth_tier(ladders):
         mine, finest = rows.get(str(per_scene[sc]["exchangeEvery"])), rows.get(lad.get(sc, {}).get("finest"))
         return within(mine, finest) if mine and finest else None
 
+    # The ladders made at the truth tier itself (tier truth): per scene, whether the tier's value
+    # lies within the rule of the ladder's other value (None where not measured).
+    at_tier = {label: {sc: within(*values_pair(lad_sc, per_scene[sc]))
+                       for sc, lad_sc in ld.items() if sc in per_scene and lad_sc.get("tier") == "truth"
+                       and values_pair(lad_sc, per_scene[sc])[0] is not None}
+               for label, ld in ladders.items() if label != TRUTH_LADDER}
     return dict(out, interval_ladder=TRUTH_LADDER,
                 interval_converged={sc: tier_within_finest(sc) for sc in MIXTURES},
-                interval_compared_to_s={sc: lad[sc]["end_s"] for sc in lad})
+                interval_compared_to_s={sc: lad[sc]["end_s"] for sc in lad},
+                converged_at_tier={label: v for label, v in at_tier.items() if v})
+
+
+def values_pair(ladder, setting):
+    """The observables of the tier's own value in LADDER (SETTING: the tier's settings of the
+    scene, by TRUTH_SETTINGS key) and of the ladder's value farthest from it, or (None, None)."""
+    knob = ladder["knob"].split(".")[-1]
+    key = next((k for k, _, entry, _ in TRUTH_SETTINGS if entry.split(".")[-1] == knob), None)
+    if key is None:
+        return None, None
+    rows = ladder["values"]
+    mine = next((v for v in rows if str(v) == str(setting[key])
+                 or _same_number(v, setting[key])), None)
+    other = next((v for v in rows if v != mine), None)
+    return (rows[mine], rows[other]) if mine is not None and other is not None else (None, None)
+
+
+def _same_number(a, b):
+    try:
+        return abs(float(a) - float(b)) <= 1e-12 * max(1.0, abs(float(b)))
+    except (TypeError, ValueError):
+        return False
 
 
 def main(argv=None):
