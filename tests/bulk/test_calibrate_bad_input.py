@@ -12,7 +12,7 @@ import drift_data as dd  # noqa: E402
 from mixflow.cli import command  # noqa: E402
 from mixflow.synthcase import checker, write  # noqa: E402
 
-CMD = command("calibrate-drifts")
+CMD = command("calibrate-drifts") + ["--pressure", "lambdaP"]  # the targets hold lambdaP
 
 
 def main():

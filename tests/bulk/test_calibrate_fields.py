@@ -25,7 +25,8 @@ from mixflow.foamdict import read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 from mixflow.commands.mixture_lambdas import load  # noqa: E402
 
-CALIBRATE = command("calibrate-drifts")  # + [CASE, ...]: the command the test runs
+# + [CASE, ...]: the command the test runs, with the lambda_p closure whose fields it recomputes
+CALIBRATE = command("calibrate-drifts") + ["--pressure", "lambdaP"]
 
 NX, NY, LX, LY = 40, 12, 1.0, 0.3  # 0.025 m cells over the 0.8 x 0.2 m grid and beyond it
 FLOWING = 0.1  # 0.108 m/s: drops the slow bins (u_s 0.06-0.10), leaving some bins without a value

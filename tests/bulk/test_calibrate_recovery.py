@@ -21,6 +21,8 @@ from mixflow.foamdict import read_dict, unquote  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 from mixflow.commands.mixture_lambdas import load  # noqa: E402
 
+LAMBDA_P = "lambdaP"  # the closure whose prescribed lambda_p the data carry
+
 
 def main():
     exe, work = sys.argv[1], sys.argv[2]
@@ -38,7 +40,7 @@ def main():
     ps_err = float(np.max(np.abs(f["p_s"] / t["ps"] - 1)))
     check(ps_err < 1e-9, f"p_s = prescribed granular pressure: max rel. diff {ps_err:.2e} < 1e-9")
 
-    res = cd.calibrate(case)
+    res = cd.calibrate(case, pressure=LAMBDA_P)
     n = t["us"].size
     cases = (("lambda_u", dd.LU, dd.SIGMA_U, t["us"]), ("lambda_w", dd.LW, dd.SIGMA_W, t["ws"]),
              ("lambda_p", dd.LP, dd.SIGMA_P, t["ps"] / dd.RHO_S))
@@ -79,7 +81,7 @@ def main():
           f"than an additive slip (R^2 {fu['r2']:.3f} against {fu['r2_additive_slip']:.3f})")
     # w_s of both signs: the net vertical solid flux nearly cancels, so flux's lambda_w is
     # ill-posed, and --vertical auto writes the isotropic drift, between LW and LU.
-    resf = cd.calibrate(case, estimator="flux", vertical="auto", n_boot=200)
+    resf = cd.calibrate(case, estimator="flux", vertical="auto", n_boot=200, pressure=LAMBDA_P)
     rw = resf["drifts"]["lambda_w"]
     share = rw["fit"]["solid_flux_net_share"]
     check(not rw["fit"]["well_posed"] and share < cd.FLUX_CANCEL_MIN,
@@ -89,7 +91,7 @@ def main():
     check(rw["vertical"]["used"] == "isotropic" and rw["value"] == iso and dd.LW < iso < dd.LU,
           f"--vertical auto: lambda_w written {rw['value']:.4f} = the isotropic drift, between "
           f"{dd.LW} and {dd.LU} (fit {rw['vertical']['fit_value']:.4f} not used)")
-    resw = cd.calibrate(case, vertical="auto", n_boot=200)
+    resw = cd.calibrate(case, vertical="auto", n_boot=200, pressure=LAMBDA_P)
     check(resw["drifts"]["lambda_w"]["vertical"]["used"] == "fit",
           "wls with --vertical auto keeps the well-posed lambda_w fit")
     # The mass balance with the data's own fluxes, differenced here, equals the extractor's
@@ -106,14 +108,14 @@ def main():
           f"flowing threshold 0.05 sqrt(g H) = {sel['flowing_speed_m_s']:.5f} m/s (H 0.12 m)")
 
     # A flowing factor of 0.1 (0.1085 m/s) drops the slow bins (u_s <= 0.10 m/s) and only them.
-    res2 = cd.calibrate(case, flowing_factor=0.1, n_boot=100)
+    res2 = cd.calibrate(case, flowing_factor=0.1, n_boot=100, pressure=LAMBDA_P)
     speed = np.hypot(t["us"], t["ws"])
     fast = int(np.sum(speed >= 0.1 * math.sqrt(9.81 * 0.12)))
     check(res2["drifts"]["lambda_u"]["samples"] == fast,
           f"--flowing-factor 0.1 keeps the {fast} bins of solid speed >= 0.1085 m/s "
           f"(got {res2['drifts']['lambda_u']['samples']})")
     # Windows 0.04-0.12 s hold windows 2..5 (of 0.02 s): 4 x 64 samples.
-    res3 = cd.calibrate(case, windows=(0.04, 0.12), n_boot=100)
+    res3 = cd.calibrate(case, windows=(0.04, 0.12), n_boot=100, pressure=LAMBDA_P)
     check(res3["drifts"]["lambda_u"]["samples"] == 4 * 64 and
           res3["selection"]["windows_used"] == [0.04, 0.12],
           f"--windows 0.04:0.12: 4 windows, 256 samples (got "
@@ -125,7 +127,7 @@ def main():
     bp = os.path.join(target, "constant", "bulkProperties")
     if os.path.exists(bp):
         os.remove(bp)
-    r = subprocess.run(command("calibrate-drifts") + [case,
+    r = subprocess.run(command("calibrate-drifts") + [case, "--pressure", LAMBDA_P,
                         "--target", target], capture_output=True, text=True)
     print(r.stdout + r.stderr)
     check(r.returncode == 0, f"calibrate_drifts.py exits 0 (got {r.returncode})")

@@ -1,11 +1,11 @@
 """The calibration command of the quasi two-phase bulk model (docs/calibration.md): constant drifts
-lambda_u, lambda_w and the pore-pressure closure's value (lambda_p, or the pore-pressure ratio chi
-with --pressure porePressureRatio) from a finished CFD-DEM mixture case, written into a bulk
-case's constant/bulkProperties `drifts` block with the closure (`pressure lambdaP;` or `pressure
-porePressureRatio;`).
+lambda_u, lambda_w and the pore-pressure closure's value (the pore-pressure ratio chi, or lambda_p
+with --pressure lambdaP) from a finished CFD-DEM mixture case, written into a bulk case's
+constant/bulkProperties `drifts` block with the closure (`pressure porePressureRatio;` or
+`pressure lambdaP;`).
 
 usage: mixflow calibrate-drifts SOURCE [--target CASE] [--estimator wls|median|flux]
-           [--pressure lambdaP|porePressureRatio] [--pore-reference mixture|surface]
+           [--pressure porePressureRatio|lambdaP] [--pore-reference mixture|surface]
            [--vertical fit|isotropic|auto]
            [--flowing-factor 0.05] [--pressure-bins all|flowing] [--min-solid-fraction 0.1]
            [--windows T0:T1]
@@ -89,7 +89,9 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
 # bulkProperties drifts.pressure -> the drift it calibrates; the default is the closure the stages
 # of results/bulk_model were calibrated with.
 PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
-PRESSURE_DEFAULT = "lambdaP"
+PRESSURE_DEFAULT = "porePressureRatio"
+# A result without its "pressure" entry was made when lambdaP was the only closure.
+PRESSURE_OF_OLD_RESULTS = "lambdaP"
 # What chi's excess pore pressure is over: the bulk model's rho_f p_m, or the extractor's
 # hydrostatic from the liquid surface (--pore-reference).
 PORE_REFERENCES = ("mixture", "surface")
@@ -747,7 +749,7 @@ def write_target(target, res, source_arg, json_path=None, fields=False, field_me
                          f"{res['pore_solid_fraction']:g}, the target's is {alpha:g} (from "
                          f"{alpha_from}): calibrate with the target's solid fraction; nothing "
                          "written")
-    pressure = res.get("pressure", PRESSURE_DEFAULT)
+    pressure = res.get("pressure", PRESSURE_OF_OLD_RESULTS)
     other = next(k for k in PRESSURE if k != pressure)
     if other in tree.get("drifts", {}):
         raise InputError(f"{path}: drifts.{other} belongs to the other pore-pressure closure "
@@ -815,8 +817,9 @@ def main(argv=None):
                     "drift of both components) or auto (the fit if well-posed, else isotropic)")
     ap.add_argument("--pressure", default=PRESSURE_DEFAULT,
                     help="the pore-pressure closure calibrated and written (bulkProperties "
-                    "drifts.pressure): lambdaP (default, the closure of the committed stages) or "
-                    "porePressureRatio (chi, without the pole of Lambda_p; docs/bulk_model.md)")
+                    "drifts.pressure): porePressureRatio (default: chi, without the pole of "
+                    "Lambda_p; docs/bulk_model.md) or lambdaP (the pressure drift of Pokhrel et "
+                    "al.)")
     ap.add_argument("--pore-reference", default="mixture",
                     help="--pressure porePressureRatio: chi's excess over the bulk model's rho_f "
                     "p_m (mixture, default) or over the extractor's hydrostatic from the liquid "
