@@ -132,7 +132,7 @@ def round_trip(out_dir):
 def truth_calibrations(out_dir):
     """Per mixture, `mixflow calibrate` on its truth-tier run (OUT/truth_<scene>/summary.json):
     the constant drifts with their 16-84 % interval and R^2, the mass-balance residual, the front
-    error at the end and over time, the speed-up, and the command."""
+    error at the end and over time, the bulk solver's CPU time, and the command."""
     cal = {}
     for scene, name in SCENES.items():
         path = os.path.join(out_dir, f"truth_{scene}", "summary.json")

@@ -230,7 +230,7 @@ def main(argv=None):
                     help="keep a step's output when it exists")
     ap.add_argument("--cell-size", type=float, help="the bulk case's cfdDict cellSize (m; default "
                     "the CFD-DEM case's)")
-    ap.add_argument("--pressure", default="porePressureRatio",
+    ap.add_argument("--pressure", default=cd.PRESSURE_DEFAULT,
                     help="calibrate-drifts --pressure (default porePressureRatio: no pole)")
     ap.add_argument("--estimator", default="wls", help="calibrate-drifts --estimator")
     ap.add_argument("--vertical", default="auto",
@@ -238,7 +238,7 @@ def main(argv=None):
                     "well-posed, else the isotropic drift)")
     ap.add_argument("--flowing-factor", type=float, default=0.05,
                     help="calibrate-drifts --flowing-factor (lower it for a slow flow)")
-    ap.add_argument("--pressure-bins", default="all",
+    ap.add_argument("--pressure-bins", default=cd.PRESSURE_BINS_DEFAULT,
                     help="calibrate-drifts --pressure-bins (default all: the pressure closure "
                     "over every mixture bin, the column at rest too)")
     a = ap.parse_args(argv)
@@ -258,6 +258,9 @@ def main(argv=None):
             raise Refusal(f"--pressure {a.pressure}: allowed {', '.join(cd.PRESSURE)}")
         if a.vertical not in cd.VERTICAL:
             raise Refusal(f"--vertical {a.vertical}: allowed {', '.join(cd.VERTICAL)}")
+        if a.pressure_bins not in cd.PRESSURE_BINS:
+            raise Refusal(f"--pressure-bins {a.pressure_bins}: allowed "
+                          f"{', '.join(cd.PRESSURE_BINS)}")
         if work == case or work.startswith(case + os.sep):
             raise Refusal(f"--work {work}: inside CASE, whose inputs it copies; choose another")
     except (Refusal, cd.InputError, foamdict.DictError, KeyError) as e:

@@ -86,8 +86,8 @@ DRIFTS = {"lambda_u": ("lambdaU", "lambda_u", "u_s", "u_f"),
           "lambda_p": ("lambdaP", "lambda_p_density", "p_s / rho_s", "p_f / rho_f"),
           "pore_pressure_ratio": ("porePressureRatio", "pore_pressure_ratio", "p_s + p_f_excess",
                                   "p_f_excess")}
-# bulkProperties drifts.pressure -> the drift it calibrates; the default is the closure the stages
-# of results/bulk_model were calibrated with.
+# bulkProperties drifts.pressure -> the drift it calibrates; the default is chi, without the pole
+# of Lambda_p (docs/bulk_model.md).
 PRESSURE = {"lambdaP": "lambda_p", "porePressureRatio": "pore_pressure_ratio"}
 PRESSURE_DEFAULT = "porePressureRatio"
 # A result without its "pressure" entry was made when lambdaP was the only closure.

@@ -195,19 +195,23 @@ def truth_tier(ladders):
 
     # The ladders made at the truth tier itself (tier truth): per scene, whether the tier's value
     # lies within the rule of the ladder's other value (None where not measured).
-    at_tier = {label: {sc: within(*values_pair(lad_sc, per_scene[sc]))
-                       for sc, lad_sc in ld.items() if sc in per_scene and lad_sc.get("tier") == "truth"
-                       and values_pair(lad_sc, per_scene[sc])[0] is not None}
-               for label, ld in ladders.items() if label != TRUTH_LADDER}
+    at_tier = {}
+    for label, ld in ladders.items():
+        for sc, lad_sc in ld.items():
+            if label != TRUTH_LADDER and sc in per_scene and lad_sc.get("tier") == "truth":
+                mine, other = values_pair(lad_sc, per_scene[sc])
+                if mine is not None:
+                    at_tier.setdefault(label, {})[sc] = within(mine, other)
     return dict(out, interval_ladder=TRUTH_LADDER,
                 interval_converged={sc: tier_within_finest(sc) for sc in MIXTURES},
                 interval_compared_to_s={sc: lad[sc]["end_s"] for sc in lad},
-                converged_at_tier={label: v for label, v in at_tier.items() if v})
+                converged_at_tier=at_tier)
 
 
 def values_pair(ladder, setting):
     """The observables of the tier's own value in LADDER (SETTING: the tier's settings of the
-    scene, by TRUTH_SETTINGS key) and of the ladder's value farthest from it, or (None, None)."""
+    scene, by TRUTH_SETTINGS key) and of the ladder's first other value (these ladders have
+    two), or (None, None)."""
     knob = ladder["knob"].split(".")[-1]
     key = next((k for k, _, entry, _ in TRUTH_SETTINGS if entry.split(".")[-1] == knob), None)
     if key is None:
