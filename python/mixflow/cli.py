@@ -24,6 +24,7 @@ VERBS = {
     "mixture-lambdas": ("mixture_lambdas", "drift coefficients of finished mixture runs (mixflowExtract)"),
     "bulk-stages": ("bulk_stages", "the bulk model at its calibration stages against CFD-DEM"),
     "bulk-model-results": ("bulk_model_results", "results/bulk_model/: the bulk model against CFD-DEM"),
+    "scene-record": ("scene_record", "a finished scene's outputs the report reads, small enough to commit"),
     "mixture-results": ("mixture_results", "results/mixtures/: fronts, Froude and Savage numbers"),
     "liquid-results": ("liquid_results", "post-processing of scripts/liquid_results.sh"),
     "yield-stress-results": ("yield_stress_results", "results/yield_stress/: drag-viscosity closures"),

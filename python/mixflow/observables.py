@@ -125,6 +125,18 @@ def granular_surface(points, x_max, d=D_P):
     return 0.5 * (edges[1:] + edges[:-1]), h
 
 
+def surface_grains(points, x_max, d=D_P):
+    """The grains that make granular_surface(POINTS, X_MAX, D): the two highest of each bin (all
+    of a bin with fewer), so the surface of the subset is the surface of all."""
+    edges = np.arange(0.0, x_max + d, d)
+    idx = np.digitize(points[:, 0], edges) - 1
+    keep = []
+    for i in range(len(edges) - 1):
+        members = np.flatnonzero(idx == i)
+        keep.extend(members[np.argsort(points[members, 1])[-2:]])
+    return points[np.sort(np.array(keep, dtype=int))]
+
+
 # Derived numbers
 
 def liquid_front(s):

@@ -4,6 +4,7 @@ the result scripts compare with (report.py, mixture_results.py, liquid_results.p
 G = 9.81  # gravity (m/s^2)
 D_P = 0.024  # grain diameter (m)
 SECTION_X = 1.38  # the section where the Froude number is taken (m)
+PROFILE_TIMES = (0.63, 0.75)  # the times of the paper's liquid and granular surfaces (s)
 
 # Table 1 in the paper's order; directory names use '+' for the paper's '&'.
 TABLE1 = ["P-I-I", "P-I-II", "P-I-III", "P-I-IV", "P-I-V", "P", "W", "HB", "B", "HB-I", "B-I",

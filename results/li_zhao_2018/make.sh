@@ -2,34 +2,69 @@
 # The reproduction report from its runs: the dry and liquid scenes at the reference tier, the
 # mixtures at the truth tier, each mixture beside its partner one exchange step finer (W&P and B&P
 # every 9 DEM steps, HB&P every 3: each number's convergence error), then results/mixtures/truth,
-# its drifts and results/li_zhao_2018. Every step is a `mixflow suite` run that skips what is
-# finished and resumes what stopped (on the rank count it was started on), so the script is rerun
-# until it ends with the report.
+# its drifts and results/li_zhao_2018.
+#
+# Each scene, once finished, is recorded into records/<group>/<scene> here (mixflow
+# scene-record: what the report reads, a few hundred kB): commit the record, and the scene is
+# done for every later session and machine. A scene with a record is skipped; one without is a
+# `mixflow suite` run that resumes where it stopped (on the rank count it was started on). So
+# the script is rerun, a session at a time, until it ends with the report, which it makes from
+# the records alone.
 # Cost on this 2-core machine (one core each): the mixtures 1.4-2.8 h, their partners about 2.3,
 # 3 and 8 h, a reference-tier dry scene a few hours, the five liquids 20 min (docs/suite.md).
-# Usage: results/li_zhao_2018/make.sh [RUNS] (default runs); NP=2 for two ranks per scene.
+# Usage: results/li_zhao_2018/make.sh [RUNS] (default runs); NP=2 for two ranks per scene;
+# SCENES="W HB" to run only those scenes' steps (the report is made once every record exists).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 runs=$(realpath -m "${1:-$root/runs}")
+records=$root/results/li_zhao_2018/records
 np=${NP:-1}
-suite() { /usr/bin/python3 -m mixflow suite --np "$np" "$@"; }
+mixflow() { /usr/bin/python3 -m mixflow "$@"; }
+wanted() { [ -z "${SCENES:-}" ] || [[ " $SCENES " == *" $1 "* ]]; }
 
-suite --tier reference --scenes W,HB,B,HB-I,B-I,P-I-I,P-I-II,P-I-III,P-I-IV,P-I-V,P \
-  --work "$runs/reference"
-for s in W+P B+P HB+P; do
-  suite --tier truth --scenes "$s" --work "$runs/truth/$s-run"
+# scene GROUP WORK SCENE [suite arguments]: run SCENE into WORK unless it has a record in GROUP,
+# then record it.
+scene() {
+  local group=$1 work=$2 name=$3
+  shift 3
+  if [ -f "$records/$group/$name/.done" ]; then
+    echo "make.sh: $name ($group) has its record: records/$group/$name"
+    return
+  fi
+  wanted "$name" || return 0
+  mixflow suite --np "$np" --scenes "$name" --work "$work" "$@"
+  mixflow scene-record "$work/$name" --out "$records/$group"
+  echo "make.sh: recorded $name; commit results/li_zhao_2018/records/$group/$name"
+}
+
+reference_scenes="W HB B HB-I B-I P-I-I P-I-II P-I-III P-I-IV P-I-V P"
+for s in $reference_scenes; do
+  scene reference "$runs/reference" "$s" --tier reference
 done
-suite --tier truth --scenes W+P --work "$runs/truth/W+P-every9" --set couplingProperties.exchangeEvery=9
-suite --tier truth --scenes B+P --work "$runs/truth/B+P-every9" --set couplingProperties.exchangeEvery=9
-suite --tier truth --scenes HB+P --work "$runs/truth/HB+P-every3" --set couplingProperties.exchangeEvery=3
+for s in W+P B+P HB+P; do
+  scene truth "$runs/truth/$s-run" "$s" --tier truth
+done
+scene partners "$runs/truth/W+P-every9" W+P --tier truth --set couplingProperties.exchangeEvery=9
+scene partners "$runs/truth/B+P-every9" B+P --tier truth --set couplingProperties.exchangeEvery=9
+scene partners "$runs/truth/HB+P-every3" HB+P --tier truth --set couplingProperties.exchangeEvery=3
 
-mkdir -p "$runs/truth/all"
-for s in W+P B+P HB+P; do ln -sfn "../$s-run/$s" "$runs/truth/all/$s"; done
-partners="$runs/truth/W+P-every9,$runs/truth/B+P-every9,$runs/truth/HB+P-every3"
 cd "$root"
-/usr/bin/python3 -m mixflow mixture-results --work "$runs/truth/all" --partner "$partners" \
-  --out results/mixtures/truth
-/usr/bin/python3 -m mixflow mixture-lambdas --work "$runs/truth/all" --scenes W+P,B+P,HB+P \
-  --out results/mixtures/truth/lambdas.json
-/usr/bin/python3 -m mixflow report --work "$runs/truth/all,$runs/reference" --partner "$partners" \
-  --out results/li_zhao_2018
+missing=""
+for s in $reference_scenes; do [ -f "$records/reference/$s/.done" ] || missing+=" reference/$s"; done
+for s in W+P B+P HB+P; do
+  for g in truth partners; do [ -f "$records/$g/$s/.done" ] || missing+=" $g/$s"; done
+done
+if [ -n "$missing" ]; then
+  echo "make.sh: scenes without a record yet:$missing; rerun to go on"
+  exit 0
+fi
+# The drifts need the mixtures' extracted fields, which only the runs hold.
+if [ -d "$runs/truth/W+P-run/W+P" ] && [ -d "$runs/truth/B+P-run/B+P" ] && [ -d "$runs/truth/HB+P-run/HB+P" ]; then
+  mkdir -p "$runs/truth/all"
+  for s in W+P B+P HB+P; do ln -sfn "../$s-run/$s" "$runs/truth/all/$s"; done
+  mixflow mixture-lambdas --work "$runs/truth/all" --scenes W+P,B+P,HB+P \
+    --out results/mixtures/truth/lambdas.json
+fi
+rec=results/li_zhao_2018/records
+mixflow mixture-results --work "$rec/truth" --partner "$rec/partners" --out results/mixtures/truth
+mixflow report --work "$rec/truth,$rec/reference" --partner "$rec/partners" --out results/li_zhao_2018

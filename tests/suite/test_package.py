@@ -35,9 +35,16 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
   8. froude.subcritical_from: rows every 0.05 s to 1 s with Fr 1.5 to 0.3 s, 0.8 at 0.35-0.4 s,
      1.2 at 0.45 s and 0.8 from 0.5 s: the flow turns subcritical at 0.5 s (the dip at 0.35 s
      does not hold for 0.2 s); with Fr 0.8 from 0.9 s only, at 0.9 s (the run's end within the
-     hold); never below 1: None.
+     hold); never below 1: None;
+  9. record.record_scene: of a finished case whose liquid series has a row every 0.5 ms to 1 s
+     (front 0.6 + t/5) and a last row cut short, the record keeps 501 rows 2 ms apart ending at
+     1 s with their values (7 digits), the snapshots nearest 0.63 and 0.75 s (of 0, 0.62, 0.76,
+     0.9 s) with at most two grains per 0.024 m bin and the same granular surface as the full
+     snapshot of 3 000 random grains, the deposit whole, not the mesh, and record.json; Scene
+     reads it as a finished truth-tier scene; an unfinished case is refused and nothing written.
 """
 import io
+import json
 import math
 import os
 import shutil
@@ -45,10 +52,12 @@ import subprocess
 import sys
 from contextlib import redirect_stdout
 
+import numpy as np
+
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import mixflow  # noqa: E402
 from mixflow.commands import suite  # noqa: E402
-from mixflow import cli, foamcase, foamdict, froude, observables, outputs, paper, schema  # noqa: E402
+from mixflow import cli, foamcase, foamdict, froude, observables, outputs, paper, record, schema  # noqa: E402
 from mixflow.synthcase import checker  # noqa: E402
 
 failures = []
@@ -227,6 +236,53 @@ fr = lambda t: 1.5 if t <= 0.3 else 0.8 if t <= 0.4 else 1.2 if t <= 0.45 else 0
 got = [froude.subcritical_from([{"time_s": t, "section_froude": f(t)} for t in ts], 0)
        for f in (fr, lambda t: 0.8 if t >= 0.9 else 1.5, lambda t: 1.5)]
 check(got == [0.5, 0.9, None], f"subcritical_from: 0.5 s, 0.9 s at the run's end, None ({got})")
+
+# 9. record.record_scene
+case = os.path.join(work, "record_src", "HB+P")
+shutil.copytree(os.path.join(work, "deposit", "HB+P"), case)
+os.makedirs(os.path.join(case, "system"))
+os.makedirs(os.path.join(case, "postProcessing", "liquid"))
+os.makedirs(os.path.join(case, "constant", "polyMesh"))
+open(os.path.join(case, "system", "tier"), "w").write("tier truth;\ncontent mixture;\n")
+with open(os.path.join(case, outputs.LIQUID_SERIES), "w") as f:  # every 0.5 ms over 1 s
+    f.write("time_s,front_bed_m\n" + "".join(f"{k * 5e-4!r},{0.6 + k * 1e-4!r}\n" for k in range(2001))
+            + "1.0005,0.8")  # a row cut short by a stopped run
+rng = np.random.default_rng(3)
+pts = np.column_stack([rng.uniform(-0.1, 4.2, 3000), rng.uniform(0, 0.5, 3000), rng.uniform(0, 0.12, 3000)])
+os.makedirs(os.path.join(case, "VTK", "particles"))
+names = [("particles/particles_0.vtk", 0.0), ("particles/particles_7.vtk", 0.62),
+         ("particles/particles_8.vtk", 0.76), ("particles/particles_9.vtk", 0.9)]
+for name, _ in names:
+    record.write_surface_snapshot(os.path.join(case, "VTK", name), pts)
+with open(os.path.join(case, outputs.SNAPSHOT_SERIES), "w") as f:
+    json.dump({"files": [{"name": n, "time": t} for n, t in names]}, f)
+rec = os.path.join(work, "records")
+sizes = record.record_scene(case, os.path.join(rec, "HB+P"))
+liq = outputs.read_rows(os.path.join(rec, "HB+P", outputs.LIQUID_SERIES))
+times = [r["time_s"] for r in liq]
+check(len(liq) == 501 and times[0] == 0 and times[-1] == 1.0
+      and all(abs(b - a - 0.002) < 1e-9 for a, b in zip(times, times[1:])),
+      f"record: the liquid series every 2 ms with its last row, the cut row left out ({len(liq)} rows)")
+check(all(abs(r["front_bed_m"] - (0.6 + r["time_s"] / 5)) < 1e-6 for r in liq),
+      "record: the kept rows' values (7 significant digits)")
+snaps = observables.vtk_series(os.path.join(rec, "HB+P"))
+surf = observables.granular_surface(observables.vtk_points(os.path.join(case, "VTK", names[1][0])), 4.0)[1]
+check([t for t, _ in snaps] == [0.62, 0.76] and all(
+      np.array_equal(observables.granular_surface(observables.vtk_points(p), 4.0)[1], surf, equal_nan=True)
+      and len(observables.vtk_points(p)) <= 2 * 167 for _, p in snaps),
+      f"record: the snapshots nearest 0.63 and 0.75 s, at most two grains a bin, the same surface ({snaps})")
+sc = observables.Scene(rec, "HB+P")
+check(sc.done and sc.tier == "truth" and sc.deposit == observables.Scene(os.path.dirname(case), "HB+P").deposit
+      and "constant/polyMesh" not in sizes and "record.json" in sizes,
+      "record: a finished Scene of its tier, the deposit whole, no mesh, record.json")
+os.remove(os.path.join(case, ".done"))
+try:
+    record.record_scene(case, os.path.join(rec, "x"))
+    refused = ""
+except ValueError as e:
+    refused = str(e)
+check("not a finished run" in refused and not os.path.exists(os.path.join(rec, "x")),
+      f"record: an unfinished run is refused ({refused})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

@@ -36,7 +36,7 @@ from mixflow.observables import (
     back_wall, particle_energies, energy_excess, e_pd, e_fc, savage,
     collision_interval, stage_change, outflow_start, runout_law)
 from mixflow.paper import (DRY_SERIES, L_SLUMP, LIQUIDS, MIXTURES, PAPER,  # noqa: F401
-                           PAPER_NAME, SECTION_X, T_SLUMP)
+                           PAPER_NAME, PROFILE_TIMES, SECTION_X, T_SLUMP)
 
 STYLE = {"W": ("C0", "-"), "HB": ("C1", "-"), "B": ("C2", "-"), "P": ("k", "-"),
          "W+P": ("C0", "--"), "HB+P": ("C1", "--"), "B+P": ("C2", "--"),
@@ -207,7 +207,7 @@ def make_figures(F, sc, fin, law):
         return fig
     F.make("savage.png", "Savage number of the particles (0.1: friction/collision limit)", sav)
     F.make("profiles.png", "Liquid and granular surfaces near t = 0.63 s and 0.75 s",
-           lambda: fig_profiles(F, sc, (0.63, 0.75)))
+           lambda: fig_profiles(F, sc, PROFILE_TIMES))
 
     def deposits():
         dry = [sc[n] for n in DRY_SERIES + ["P"] if sc[n].done and sc[n].deposit]
