@@ -290,6 +290,38 @@ TEST(DragViscosity, SlipClosureGivesTheBinghamPlasticDrag) {
       InputError);
 }
 
+TEST(DragViscosity, ResolvedClosureAtZeroShearTakesTheLiquidsLimit) {
+  // OpenFOAM's HerschelBulkley gives nu = 0 in a cell at rest when tau_y = 0 and n = 1; the
+  // resolved closure then takes the law's limit K, the same drag as the Newtonian liquid K.
+  ForceContext hb;
+  hb.liquid.density = 1000;
+  hb.liquid.yieldStress = 0;
+  hb.liquid.consistency = 1e-3;
+  hb.liquid.flowIndex = 1;
+  hb.liquid.viscosityCap = 1e4;
+  ForceContext water;
+  water.liquid.density = 1000;
+  const auto coeffs = dict("DiFeliceDragCoeffs { dragViscosity resolved; }");
+  const auto inHb = ForceModel::New("DiFeliceDrag", coeffs, hb);
+  const auto inWater = ForceModel::New("DiFeliceDrag", coeffs, water);
+  ParticleState p;
+  p.radius = 0.012;
+  FluidAtParticle f;
+  f.rho = 1000;
+  f.voidfraction = 0.4;
+  f.U = Vec3(0, 0.01, 0);
+  f.mu = 0;  // the solver's HB value at zero shear
+  const double beta = diFelice(0.024, 1000, 1e-3, 0.4, 0.01, true).beta;
+  EXPECT_NEAR(inHb->force(p, f).beta, beta, 1e-12 * beta);
+  f.mu = 1e-3;  // the Newtonian solver's value
+  EXPECT_NEAR(inWater->force(p, f).beta, beta, 1e-12 * beta);
+  // A yield-stress liquid at rest: its cap.
+  hb.liquid.yieldStress = 3;
+  f.mu = 0;
+  EXPECT_NEAR(ForceModel::New("DiFeliceDrag", coeffs, hb)->force(p, f).beta,
+              diFelice(0.024, 1000, 1e4, 0.4, 0.01, true).beta, 1e-9);
+}
+
 TEST(ForceModels, BuoyancyIsMinusDisplacedFluidWeight) {
   ForceContext c;
   c.g = Vec3(0, -kG, 0);
