@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What holds the quick yield-stress mixtures (cases/W+P-quick, E x 1e-3, face smoothing 0.5,
 # exchange every 2 DEM steps, 0.5 s). HB&P's liquid at yield stress tau_c 0, 3, 10, 30.002 Pa with
-# its kappa and n (mobility must fall monotonically); the fluid sampled at the grain by cell
+# its kappa and n (mobility must fall monotonically), and as water (tau_c 0, kappa 1e-3, n 1); the fluid sampled at the grain by cell
 # (the cell's values) and cellPoint (interpolated) sampling, at cells of 0.04, 0.06 (the case's)
 # and 0.08 m, for HB&P, B&P and W&P, and 0.03 m for HB&P and B&P; HB&P with cellPoint at one DEM step per exchange;
 # the plastic liquids' viscosity cap (mu_0) at 1e3, 1e4 (the cases') and 1e5 Pa s with either
@@ -17,6 +17,13 @@ work=$(realpath -m "${1:-$root/runs/mobility}")
 for ys in 0 3 10 30.002; do
   quick_run "hb_yield_stress_$ys" HB+P 2 --scene liquid.yieldStress="$ys"
 done
+# The same liquid by two routes: HB&P's Herschel-Bulkley liquid with tau_c 0, kappa 1e-3 Pa s and
+# n 1 is W&P's water (w_cell_0.06); the water with its viscosity x (1 + 1e-12) is the round-off
+# floor of that comparison.
+quick_run hb_as_water HB+P 2 --couple interpolation=cell --cfd cellSize=0.06 \
+  --scene liquid.yieldStress=0 --scene liquid.consistency=1e-3 --scene liquid.flowIndex=1
+quick_run w_noise W+P 2 --couple interpolation=cell --cfd cellSize=0.06 \
+  --scene liquid.viscosity=0.001000000000001
 for liquid in HB+P B+P W+P; do
   tag=$(echo "$liquid" | tr 'A-Z+' 'a-z_' | sed 's/_p$//')
   for dx in 0.04 0.06 0.08; do
