@@ -20,6 +20,7 @@ the partner's runs turn over is no verdict ("not converged").
 
 import argparse
 import csv
+import functools
 import json
 import os
 import sys
@@ -287,6 +288,7 @@ def fidelity(*scenes):
     return "; ".join(sorted({FIDELITY.get((s.tier, s.content), "") for s in scenes if s.done} - {""}))
 
 
+@functools.lru_cache(maxsize=None)  # read once per report: locked() asks for every row
 def mobility_rows():
     """results/convergence/mobility.csv (the quick yield-stress mixtures' sampling and cell-size
     runs) by variant, or {}."""
@@ -298,6 +300,7 @@ def mobility_rows():
         return {}
 
 
+@functools.lru_cache(maxsize=None)
 def truth_sampling(scene):
     """Energy released by 0.5 s (J/m) with `cell` and `cellPoint` sampling at the truth tier
     (results/convergence/summary.json, ladder interpolation_truth), or None."""
