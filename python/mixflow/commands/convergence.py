@@ -247,7 +247,13 @@ def main(argv=None):
                     help="also each value's change against this finished run of the scene "
                     "(e.g. a noise-floor run against the run it perturbs)")
     ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--made-by", metavar="COMMAND",
+                    help="with --report-only: the command that made WORK/LABEL/<value>/SCENE, "
+                    "recorded as the ladder's command (a ladder whose values differ in more than "
+                    "one entry, e.g. results/convergence/geometry.sh)")
     args = ap.parse_args(argv)
+    if args.made_by and not args.report_only:
+        ap.error("--made-by records the command of runs made elsewhere: it needs --report-only")
     args.values = [v.strip() for v in args.values.split(",") if v.strip()]
     args.label = args.label or args.knob.split(".")[-1]
     if not args.report_only:
@@ -266,8 +272,8 @@ def main(argv=None):
             summary = json.load(f)
     ladder = collect(args)
     # The command that makes the ladder: --report-only only re-reads the runs it made.
-    ladder["command"] = " ".join(["mixflow convergence"]
-                                 + [a for a in (argv or sys.argv[1:]) if a != "--report-only"])
+    ladder["command"] = args.made_by or " ".join(
+        ["mixflow convergence"] + [a for a in (argv or sys.argv[1:]) if a != "--report-only"])
     summary.setdefault("ladders", {}).setdefault(args.label, {})[args.scene] = ladder
     # A scene is converged once every ladder of it is; a one-value ladder (a noise-floor run
     # beside a ladder's value) is no ladder.
