@@ -20,7 +20,7 @@ for s in ${SCENES:-W+P HB+P B+P}; do
     --set sceneProperties.sample.width=0.6 --set sceneProperties.channel.sideWalls=walls \
     --set cfdDict.dimensions=3
   cd "$root"
-  mixflow tier-trade --scene "$s" --times 0.25,0.5,1,1.5 \
+  mixflow tier-trade --scene "$s" --times 0.25,0.5,1,1.5 --paper-cost "" \
     --tiers "reseeded=$work/reseeded,slice=$work/slice,channel=$work/channel" \
     --out "results/convergence/geometry/$s"
   mixflow convergence --report-only --scene "$s" --tier quick --knob geometry \

@@ -22,6 +22,7 @@ Writes OUT/tier_trade.json and OUT/tier_trade.md.
 import argparse
 import json
 import os
+import shlex
 import sys
 
 import numpy as np
@@ -162,7 +163,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     times = [float(t) for t in a.times.split(",")]
     res = {"scene": a.scene, "times_s": times, "tiers": {}, "changes": {},
-           "command": " ".join(["mixflow tier-trade"] + (argv or sys.argv[1:]))}
+           "command": shlex.join(["mixflow", "tier-trade"] + (argv or sys.argv[1:]))}
     for spec in a.tiers.split(","):
         name, work = spec.split("=")
         res["tiers"][name] = tier_row(work, a.scene, times)
