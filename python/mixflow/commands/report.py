@@ -279,7 +279,10 @@ FIDELITY = {  # (tier, content) -> what the tier changes that may explain a diff
     ("truth", "particles"): "truth tier (the reference tier's dry scenes): grains softened 1000x",
     ("truth", "liquid"): "truth tier (the reference tier's liquids): 2-D, no side-wall friction",
     ("truth", "mixture"): "truth tier: 0.12 m periodic slice, 2-D fluid on 0.075 m cells sampled "
-                          "per cell (the paper's stiffness, a converged exchange interval)",
+                          "per cell (the paper's stiffness, a converged exchange interval); no "
+                          "side walls, whose friction takes 10-49 % of the energy the mixtures "
+                          "release on the slice at the quick tier (results/convergence/README.md, "
+                          "\"Geometry\")",
 }
 
 
