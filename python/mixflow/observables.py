@@ -112,12 +112,18 @@ def vtk_points(path):
     return np.array(vals[:3 * n], dtype=float).reshape(n, 3)
 
 
+def _surface_bins(points, x_max, d):
+    """The bin edges of one diameter over [0, X_MAX] and each point's bin index (-1 or past the
+    last bin: outside)."""
+    edges = np.arange(0.0, x_max + d, d)
+    return edges, np.digitize(points[:, 0], edges) - 1
+
+
 def granular_surface(points, x_max, d=D_P):
     """Top of the granular layer per bin of one diameter: max y + d/2 of the bin's grains (nan
     where a bin holds fewer than 2 grains, so a lone bouncing grain is no surface)."""
-    edges = np.arange(0.0, x_max + d, d)
+    edges, idx = _surface_bins(points, x_max, d)
     h = np.full(len(edges) - 1, np.nan)
-    idx = np.digitize(points[:, 0], edges) - 1
     for i in range(len(h)):
         ys = points[idx == i, 1]
         if len(ys) >= 2:
@@ -128,8 +134,7 @@ def granular_surface(points, x_max, d=D_P):
 def surface_grains(points, x_max, d=D_P):
     """The grains that make granular_surface(POINTS, X_MAX, D): the two highest of each bin (all
     of a bin with fewer), so the surface of the subset is the surface of all."""
-    edges = np.arange(0.0, x_max + d, d)
-    idx = np.digitize(points[:, 0], edges) - 1
+    edges, idx = _surface_bins(points, x_max, d)
     keep = []
     for i in range(len(edges) - 1):
         members = np.flatnonzero(idx == i)

@@ -13,11 +13,9 @@ recorded into the repository, and the report is made from records and runs alike
   granular surface (observables.surface_grains: the same surface as the full snapshot).
 """
 
-import json
 import math
 import os
 import shutil
-
 
 from . import outputs
 from .observables import surface_grains, vtk_points, vtk_series
@@ -88,10 +86,10 @@ def write_surface_snapshot(path, points):
 
 def record_snapshots(case, out, times=PROFILE_TIMES):
     """The surface grains of CASE's snapshots nearest each of TIMES into OUT's VTK/ with their
-    series file; the number of snapshots written."""
+    series file (nothing where CASE has no snapshots)."""
     snaps = vtk_series(case)
     if not snaps:
-        return 0
+        return
     chosen = sorted({min(snaps, key=lambda e: abs(e[0] - t)) for t in times})
     os.makedirs(os.path.join(out, os.path.dirname(outputs.SNAPSHOT_VTK)), exist_ok=True)
     files = []
@@ -100,10 +98,8 @@ def record_snapshots(case, out, times=PROFILE_TIMES):
         write_surface_snapshot(os.path.join(out, "VTK", rel),
                                surface_grains(vtk_points(path), SNAPSHOT_SURFACE_X_M))
         files.append({"name": rel, "time": t})
-    with open(os.path.join(out, outputs.SNAPSHOT_SERIES), "w") as f:
-        json.dump({"file-series-version": "1.0", "files": files}, f, indent=1)
-        f.write("\n")
-    return len(files)
+    outputs.write_json(os.path.join(out, outputs.SNAPSHOT_SERIES),
+                       {"file-series-version": "1.0", "files": files})
 
 
 def record_scene(case, out, scale=1.0):
@@ -129,9 +125,11 @@ def record_scene(case, out, scale=1.0):
         if rel in WHOLE:
             shutil.copy2(src, dst)
             continue
-        with open(src) as f:
-            lines = thinned_lines(src, STEP_S[rel] * scale) if rel in THINNED else \
-                [ln if ln.startswith("#") else rounded(ln) for ln in f if ln.strip()]
+        if rel in THINNED:
+            lines = thinned_lines(src, STEP_S[rel] * scale)
+        else:
+            with open(src) as f:
+                lines = [ln if ln.startswith("#") else rounded(ln) for ln in f if ln.strip()]
         with open(dst, "w") as f:
             f.writelines(lines)
     record_snapshots(case, out)

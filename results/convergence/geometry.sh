@@ -13,13 +13,13 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:-$root/runs/convergence}")/geometry_quick
 mixflow() { /usr/bin/python3 -m mixflow "$@"; }
+cd "$root"
 for s in ${SCENES:-W+P HB+P B+P}; do
   mixflow suite --tier quick --scenes "$s" --work "$work/slice"
   mixflow suite --tier quick --scenes "$s" --work "$work/reseeded" --set demDict.settle.seed=2
   mixflow suite --tier quick --scenes "$s" --work "$work/channel" \
     --set sceneProperties.sample.width=0.6 --set sceneProperties.channel.sideWalls=walls \
     --set cfdDict.dimensions=3
-  cd "$root"
   mixflow tier-trade --scene "$s" --times 0.25,0.5,1,1.5 --paper-cost "" \
     --tiers "reseeded=$work/reseeded,slice=$work/slice,channel=$work/channel" \
     --out "results/convergence/geometry/$s"

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # What holds the quick yield-stress mixtures (cases/W+P-quick, E x 1e-3, face smoothing 0.5,
 # exchange every 2 DEM steps, 0.5 s). HB&P's liquid at yield stress tau_c 0, 3, 10, 30.002 Pa with
-# its kappa and n (mobility must fall monotonically), and as water (tau_c 0, kappa 1e-3, n 1); the fluid sampled at the grain by cell
-# (the cell's values) and cellPoint (interpolated) sampling, at cells of 0.04, 0.06 (the case's)
-# and 0.08 m, for HB&P, B&P and W&P, and 0.03 m for HB&P and B&P; HB&P with cellPoint at one DEM step per exchange;
+# its kappa and n (mobility must fall monotonically), and as water (tau_c 0, kappa 1e-3, n 1);
+# the fluid sampled at the grain by cell (the cell's values) and cellPoint (interpolated)
+# sampling, at cells of 0.04, 0.06 (the case's) and 0.08 m, for HB&P, B&P and W&P, and 0.03 m for
+# HB&P and B&P; HB&P with cellPoint at one DEM step per exchange;
 # the plastic liquids' viscosity cap (mu_0) at 1e3, 1e4 (the cases') and 1e5 Pa s with either
 # sampling at 0.06 m. Sub-cell
 # shear that the sampling counts as slip gives a plastic drag spurious strength. Writes

@@ -17,7 +17,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 runs=$(realpath -m "${1:-$root/runs}")
-records=$root/results/li_zhao_2018/records
+cd "$root"
+records=results/li_zhao_2018/records
 np=${NP:-1}
 mixflow() { /usr/bin/python3 -m mixflow "$@"; }
 wanted() { [ -z "${SCENES:-}" ] || [[ " $SCENES " == *" $1 "* ]]; }
@@ -34,7 +35,7 @@ scene() {
   wanted "$name" || return 0
   mixflow suite --np "$np" --scenes "$name" --work "$work" "$@"
   mixflow scene-record "$work/$name" --out "$records/$group"
-  echo "make.sh: recorded $name; commit results/li_zhao_2018/records/$group/$name"
+  echo "make.sh: recorded $name; commit $records/$group/$name"
 }
 
 reference_scenes="W HB B HB-I B-I P-I-I P-I-II P-I-III P-I-IV P-I-V P"
@@ -48,7 +49,6 @@ scene partners "$runs/truth/W+P-every9" W+P --tier truth --set couplingPropertie
 scene partners "$runs/truth/B+P-every9" B+P --tier truth --set couplingProperties.exchangeEvery=9
 scene partners "$runs/truth/HB+P-every3" HB+P --tier truth --set couplingProperties.exchangeEvery=3
 
-cd "$root"
 missing=""
 for s in $reference_scenes; do [ -f "$records/reference/$s/.done" ] || missing+=" reference/$s"; done
 for s in W+P B+P HB+P; do
@@ -65,6 +65,7 @@ if [ -d "$runs/truth/W+P-run/W+P" ] && [ -d "$runs/truth/B+P-run/B+P" ] && [ -d 
   mixflow mixture-lambdas --work "$runs/truth/all" --scenes W+P,B+P,HB+P \
     --out results/mixtures/truth/lambdas.json
 fi
-rec=results/li_zhao_2018/records
-mixflow mixture-results --work "$rec/truth" --partner "$rec/partners" --out results/mixtures/truth
-mixflow report --work "$rec/truth,$rec/reference" --partner "$rec/partners" --out results/li_zhao_2018
+mixflow mixture-results --work "$records/truth" --partner "$records/partners" \
+  --out results/mixtures/truth
+mixflow report --work "$records/truth,$records/reference" --partner "$records/partners" \
+  --out results/li_zhao_2018

@@ -9,6 +9,7 @@ import argparse
 import os
 import sys
 
+from mixflow.outputs import DONE
 from mixflow.record import STEP_S, record_scene
 
 
@@ -22,7 +23,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not args.step_scale > 0:
         return f"mixflow scene-record: --step-scale {args.step_scale}: must be > 0"
-    missing = [c for c in args.cases if not os.path.isfile(os.path.join(c, ".done"))]
+    # Every case checked before any record is written (record_scene refuses one by one).
+    missing = [c for c in args.cases if not os.path.isfile(os.path.join(c, DONE))]
     if missing:
         return ("mixflow scene-record: not finished runs (no .done): " + ", ".join(missing)
                 + "; record a run once mixflow suite has finished it")
