@@ -80,6 +80,12 @@ Schema makeSchema() {
                     "walls: frictional (grains) and no-slip (liquid) side walls at z = 0, W "
                     "(paper); periodic: an infinitely wide channel (cyclic z faces of a 3-D "
                     "liquid). 2-D liquid: ignored (no side walls)"),
+          scalarParam("channel.liquidDepth", c.liquidDepth, Range::nonNegative(), "m",
+                      "still liquid standing over the whole channel floor at t = 0, up to this "
+                      "depth: the column collapses immersed in a tank (Rondon, Pouliquen & "
+                      "Aussillous 2011), and the outlet is a closed wall. 0: a dry channel with "
+                      "an open outlet (the paper's). Liquid and mixture scenes")
+              .alsoAllowed("< channel height; 0 in a dry scene"),
           dictParam("gate",
                     "the gate at x = L that holds the column until t = 0 (optional: removed at "
                     "once)"),
@@ -211,6 +217,7 @@ void readChannel(const Schema& sc, const Dictionary& d, ChannelSpec& c) {
   c.length = sc.scalar(d, "channel.length");
   c.height = sc.scalar(d, "channel.height");
   c.sideWalls = sc.word(d, "channel.sideWalls");
+  c.liquidDepth = sc.scalar(d, "channel.liquidDepth");
 }
 
 void readParticles(const Schema& sc, const Dictionary& d, ParticleMaterial& p) {
@@ -378,6 +385,16 @@ void checkGeometry(const Dictionary& scene, const SceneProperties& s) {
   if (s.channel.height <= s.sample.height)
     channel.fail("height", "value " + num(s.channel.height) + " must exceed the sample height (" +
                                num(s.sample.height) + " m): the open top lies above the column");
+  if (s.channel.tank() && !s.fluid())
+    channel.fail("liquidDepth", "value " + num(s.channel.liquidDepth) +
+                                    " m needs a liquid: content " + s.content +
+                                    " has none; allowed value 0");
+  if (s.channel.liquidDepth >= s.channel.height)
+    channel.fail("liquidDepth", "value " + num(s.channel.liquidDepth) +
+                                    " must lie below the channel height (" + num(s.channel.height) +
+                                    " m): the liquid needs air above it; "
+                                    "allowed range [0, " +
+                                    num(s.channel.height) + ")");
   // The grains' lifted plate (as tall as the column and 3 d) rises until its lower edge passes the
   // column (2 d above it) inside the DEM box, whose top is at least 1.5 times the channel height.
   const double plateTop = 2 * s.sample.height + 5 * d;

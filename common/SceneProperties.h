@@ -25,6 +25,8 @@ struct ChannelSpec {
   double length = 0;                // x of the outlet (m); particles beyond are deleted
   double height = 0;                // y of the open top (m); particles above are deleted
   std::string sideWalls = "walls";  // walls | periodic (an infinitely wide channel)
+  double liquidDepth = 0;           // m of still liquid over the whole floor; > 0: a closed tank
+  bool tank() const { return liquidDepth > 0; }
 };
 
 // How the gate at x = L leaves the column at t = 0: removed at once (the paper's), or lifted as a

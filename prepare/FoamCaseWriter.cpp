@@ -101,7 +101,8 @@ std::string boundaryField(const LiquidCase& c, const PatchBCs& bc) {
   } else {
     s << "    sideWalls   { " << bc.wall << " }\n";
   }
-  s << "    outlet      { " << bc.outlet << " }\n";
+  // A tank's outlet is a closed wall (channel.liquidDepth).
+  s << "    outlet      { " << (c.channel.tank() ? bc.wall : bc.outlet) << " }\n";
   s << "    atmosphere  { " << bc.atmosphere << " }\n";
   s << "}\n";
   return s.str();
@@ -137,7 +138,10 @@ std::string blockMeshDict(const LiquidCase& c) {
   } else {
     s << "    sideWalls  { type wall;  faces ((0 3 2 1) (4 5 6 7)); }   // z = 0, W, no-slip\n";
   }
-  s << "    outlet     { type patch; faces ((1 2 6 5)); }   // x = channel end, open\n"
+  s << (c.channel.tank()
+            ? "    outlet     { type wall;  faces ((1 2 6 5)); }   // x = channel end, closed "
+              "(a tank)\n"
+            : "    outlet     { type patch; faces ((1 2 6 5)); }   // x = channel end, open\n")
     << "    atmosphere { type patch; faces ((3 7 6 2)); }   // y = channel top, open\n"
     << ");\n\nmergePatchPairs ();\n";
   return s.str();
@@ -341,18 +345,21 @@ std::string transportProperties(const LiquidCase& c) {
   return s.str();
 }
 
-// Fraction of cell (i, j) inside [0, L] x [0, H] (the sample spans the whole width).
+// Fraction of cell (i, j) inside [0, L] x [0, H] (the sample spans the whole width) or under the
+// tank's still liquid, y < channel.liquidDepth.
 double fillFraction(const LiquidCase& c, int i, int j) {
   const double fx = std::clamp((c.sample.length - i * c.dx()) / c.dx(), 0.0, 1.0);
   const double fy = std::clamp((c.sample.height - j * c.dy()) / c.dy(), 0.0, 1.0);
-  return fx * fy;
+  const double tank = std::clamp((c.channel.liquidDepth - j * c.dy()) / c.dy(), 0.0, 1.0);
+  return std::max(fx * fy, tank);
 }
 
 std::string alphaField(const LiquidCase& c) {
   std::ostringstream s;
   const long n = long(c.nx) * c.ny * c.nz;
-  s << "// Sample box [0, " << num(c.sample.length) << "] x [0, " << num(c.sample.height)
-    << "] filled exactly (cells the gate or the sample top cuts get their covered fraction).\n"
+  s << "// Sample box [0, " << num(c.sample.length) << "] x [0, " << num(c.sample.height) << "]"
+    << (c.channel.tank() ? " and the tank below y = " + num(c.channel.liquidDepth) : "")
+    << " filled exactly (cells the gate or the surface cuts get their covered fraction).\n"
     << "dimensions      [0 0 0 0 0 0 0];\n\ninternalField   nonuniform List<scalar>\n"
     << n << "\n(\n";
   for (int k = 0; k < c.nz; ++k)
