@@ -61,12 +61,21 @@ def bin_counts(run_dir, x_range=X_RANGE, y_range=Y_RANGE):
     return tuple(counts)
 
 
+def y_range(run_dir):
+    """Y_RANGE, or up to 0.12 m above a tank's liquid (channel liquidDepth): the pore pressure
+    against hydrostatic needs the liquid surface inside the grid."""
+    scene = read_dict(os.path.join(run_dir, "constant", "sceneProperties"))
+    depth = float(scene["channel"].get("liquidDepth", "0").split()[0])
+    return max(Y_RANGE, depth + 0.12)
+
+
 def extract(run_dir, build):
-    nx, ny = bin_counts(run_dir)
+    top = y_range(run_dir)
+    nx, ny = bin_counts(run_dir, y_range=top)
     with open(os.path.join(run_dir, "system", "extractDict"), "w") as f:
         f.write("FoamFile { version 2.0; format ascii; class dictionary; object extractDict; }\n"
                 "// written by mixflow mixture-lambdas\n"
-                f"grid {{ x (0 {X_RANGE!r} {nx}); y (0 {Y_RANGE!r} {ny}); }}\n"
+                f"grid {{ x (0 {X_RANGE!r} {nx}); y (0 {top!r} {ny}); }}\n"
                 "windows { start 0; width 0.1; }\n"
                 "fluid { source openfoam; }\n")
     run_extract(run_dir, build)
