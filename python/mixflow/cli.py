@@ -25,6 +25,7 @@ VERBS = {
     "bulk-stages": ("bulk_stages", "the bulk model at its calibration stages against CFD-DEM"),
     "bulk-model-results": ("bulk_model_results", "results/bulk_model/: the bulk model against CFD-DEM"),
     "scene-record": ("scene_record", "a finished scene's outputs the report reads, small enough to commit"),
+    "scene-checkpoint": ("scene_checkpoint", "a stopped mixture run's resumable state, small enough to commit"),
     "mixture-results": ("mixture_results", "results/mixtures/: fronts, Froude and Savage numbers"),
     "liquid-results": ("liquid_results", "post-processing of scripts/liquid_results.sh"),
     "yield-stress-results": ("yield_stress_results", "results/yield_stress/: drag-viscosity closures"),

@@ -9,7 +9,11 @@
 # done for every later session and machine. A scene with a record is skipped; one without is a
 # `mixflow suite` run that resumes where it stopped (on the rank count it was started on). So
 # the script is rerun, a session at a time, until it ends with the report, which it makes from
-# the records alone.
+# the records alone. A mixture longer than a session is stopped (Ctrl-C, or kill the suite's
+# process group) and checkpointed: `mixflow scene-checkpoint RUNS/<group run>/<scene> --out
+# results/li_zhao_2018/checkpoints/<group>` keeps its last field write, the particles' restart
+# and its outputs so far, thinned (a few MB); commit it, and a later session on any machine
+# restores it here (when RUNS has no such run) and resumes it. Its record replaces it.
 # Cost on this 2-core machine (one core each): the mixtures 1.4-2.8 h, their partners about 2.3,
 # 3 and 8 h, a reference-tier dry scene a few hours, the five liquids 20 min (docs/suite.md).
 # Usage: results/li_zhao_2018/make.sh [RUNS] (default runs); NP=2 for two ranks per scene;
@@ -19,6 +23,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 runs=$(realpath -m "${1:-$root/runs}")
 cd "$root"
 records=results/li_zhao_2018/records
+checkpoints=results/li_zhao_2018/checkpoints
 np=${NP:-1}
 mixflow() { /usr/bin/python3 -m mixflow "$@"; }
 wanted() { [ -z "${SCENES:-}" ] || [[ " $SCENES " == *" $1 "* ]]; }
@@ -33,9 +38,13 @@ scene() {
     return
   fi
   wanted "$name" || return 0
+  if [ ! -d "$work/$name" ] && [ -d "$checkpoints/$group/$name" ]; then
+    mixflow scene-checkpoint --restore "$checkpoints/$group/$name" --work "$work"
+  fi
   mixflow suite --np "$np" --scenes "$name" --work "$work" "$@"
   mixflow scene-record "$work/$name" --out "$records/$group"
-  echo "make.sh: recorded $name; commit $records/$group/$name"
+  rm -rf "${checkpoints:?}/$group/$name"
+  echo "make.sh: recorded $name; commit $records/$group/$name (and the removal of its checkpoint)"
 }
 
 reference_scenes="W HB B HB-I B-I P-I-I P-I-II P-I-III P-I-IV P-I-V P"

@@ -36,6 +36,9 @@ row after the write in each time series); then it is resumed. Checks:
   5. resuming a case that wrote no field is refused, naming dem/coupled.resume.state; resuming on
      another rank count is refused before anything is removed; the state records its restart's
      cksum and size, and a truncated restart is refused naming the previous resume point.
+  6. a checkpoint of the stopped run (mixflow scene-checkpoint, mixflow.checkpoint), restored
+     into another directory, resumes there as the run itself does: its first 10 exchanges after
+     the write equal A's within 1e-12 relative.
 """
 import csv
 import json
@@ -195,6 +198,16 @@ rc, out = run(["bash", "-c", f'. "{root}/scripts/ResumeFunctions" && resumeMixtu
 check(rc == 2 and f"written on {ranks} rank(s), not {other}" in out and os.path.exists(later),
       f"a resume on {other} rank(s) of a run written on {ranks} is refused, nothing changed "
       f"(exit {rc})")
+# 6. The same run through a checkpoint (mixflow scene-checkpoint: the write, the restart and the
+# outputs so far, thinned) restored into another directory, where the resume goes on from it.
+ckpt = os.path.join(work, "checkpoints")
+rc_c, out_c = run([sys.executable, "-m", "mixflow", "scene-checkpoint", b, "--out", ckpt], work)
+rc_r, out_r = run([sys.executable, "-m", "mixflow", "scene-checkpoint", "--restore",
+                   os.path.join(ckpt, "b"), "--work", os.path.join(work, "restored")], work)
+c = os.path.join(work, "restored", "b")
+rc_cr, out_cr = resume(c) if rc_c == rc_r == 0 else (1, out_c + out_r)
+check(rc_cr == 0 and "resume: done" in out_cr, f"a checkpoint of B, restored, resumes and finishes "
+      f"(exits {rc_c}, {rc_r}, {rc_cr})")
 rc, out = resume(b)
 check(rc == 0 and "resume: done" in out, f"resumeMixtureCase finishes (exit {rc})")
 check("resumed with the drag state of the particles' restart" in
@@ -253,6 +266,11 @@ def first_exchanges(a, b, t_w, n=10, ignore=()):
 worst, where = first_exchanges(a, b, t_w)
 check(worst <= 1e-12, f"the first 10 exchanges after the resume equal A's in every column: "
       f"largest relative difference {worst:.3e} <= 1e-12 ({where})")
+
+if rc_cr == 0:
+    worst, where = first_exchanges(a, c, t_w)
+    check(worst <= 1e-12, f"checkpoint: the first 10 exchanges after its write equal A's in every "
+          f"column: largest relative difference {worst:.3e} <= 1e-12 ({where})")
 
 # 4. The end state within the spread a round-off change makes (results/reproducibility).
 spread = json.load(open(os.path.join(root, "results", "reproducibility", "summary.json")))
