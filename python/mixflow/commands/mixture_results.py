@@ -164,6 +164,13 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(out, "mixtures.png"), dpi=110)
     summary["missing"] = [PAPER_NAME[n] for n in scenes if n not in done]
+    # The drifts of the same runs (mixflow mixture-lambdas --out OUT/lambdas.json), kept beside
+    # the observables whether the drifts or the observables were made last.
+    lam = os.path.join(out, "lambdas.json")
+    if os.path.isfile(lam):
+        with open(lam) as f:
+            drifts = json.load(f)
+        summary["lambdas"], summary["lambdas_command"] = drifts["scenes"], drifts["command"]
     write_observables_csv(os.path.join(out, "observables.csv"), summary["scenes"])
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(obs.clean(summary), f, indent=2)
