@@ -21,5 +21,13 @@ expect "a 16-digit name raises it to 16" '^timePrecision +16;'
 printf 'application mixflowCoupled;\n' >system/controlDict
 _setTimePrecision 1.13999722736
 expect "without the entry (OpenFOAM's 6), 12 is appended" '^timePrecision 12;'
+# A prepared case: the precision in the controlDict.generated that system/controlDict includes.
+printf '#include "controlDict.generated"\n' >system/controlDict
+printf 'timePrecision   8;\n' >system/controlDict.generated
+_setTimePrecision 0.30000005
+expect "the included 8 holds an 8-digit name: nothing appended" '^#include'
+if grep -q timePrecision system/controlDict; then echo "  FAIL appended to an included 8"; fail=1; fi
+_setTimePrecision 1.13999722736
+expect "a 12-digit name appends 12 after the include" '^timePrecision 12;'
 [ "$fail" -eq 0 ] && echo PASS || echo FAIL
 exit "$fail"
