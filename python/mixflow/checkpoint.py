@@ -21,7 +21,7 @@ import subprocess
 
 from . import outputs
 from .paper import PROFILE_TIMES
-from .record import STEP_S, record_snapshots, thinned_lines
+from .record import STEP_S, file_sizes, record_snapshots, thinned
 
 STATE = os.path.join("dem", "coupled.resume.state")
 SETTLED_FILES = ("settled.state", "settled.inputs", "settled.entries")
@@ -113,12 +113,7 @@ def checkpoint_scene(case, out):
         else:
             lines = cut_lines(src, t if CUT[rel] else t_dem)
         if rel in THINNED:
-            tmp = os.path.join(out, rel + ".cut")
-            os.makedirs(os.path.dirname(tmp), exist_ok=True)
-            with open(tmp, "w") as f:
-                f.writelines(lines)
-            lines = thinned_lines(tmp, THINNED[rel])
-            os.remove(tmp)
+            lines = thinned(lines, THINNED[rel])
         os.makedirs(os.path.dirname(os.path.join(out, rel)), exist_ok=True)
         with open(os.path.join(out, rel), "w") as f:
             f.writelines(lines)
@@ -128,8 +123,7 @@ def checkpoint_scene(case, out):
     outputs.write_json(os.path.join(out, CHECKPOINT), {
         "source": os.path.abspath(case), "time_s": t, "time_name": name,
         "thinned_step_s": THINNED})
-    return {os.path.relpath(os.path.join(d, n), out): os.path.getsize(os.path.join(d, n))
-            for d, _, names in os.walk(out) for n in names}
+    return file_sizes(out)
 
 
 def restore(checkpoint, run_dir):

@@ -48,11 +48,15 @@ def rounded(line):
 
 
 def thinned_lines(path, step):
-    """The lines of CSV time series PATH ('#' comments and the header kept) whose time (first
-    column) is the first of its interval of length max(STEP, its span / MAX_ROWS), with the last
-    row; a row cut short by a stopped run is left out."""
+    """thinned(the lines of CSV time series PATH, STEP)."""
     with open(path) as f:
-        lines = f.readlines()
+        return thinned(f.readlines(), step)
+
+
+def thinned(lines, step):
+    """The LINES of a CSV time series ('#' comments and the header kept) whose time (first column)
+    is the first of its interval of length max(STEP, its span / MAX_ROWS), with the last row; a
+    row cut short by a stopped run is left out."""
     head = [ln for ln in lines if ln.startswith("#")]
     body = [ln for ln in lines if ln.strip() and not ln.startswith("#")]
     if not body:
@@ -136,6 +140,11 @@ def record_scene(case, out, scale=1.0):
     outputs.write_json(os.path.join(out, RECORD), {
         "source": os.path.abspath(case), "thinned_step_s": {k: v * scale for k, v in STEP_S.items()},
         "max_rows": MAX_ROWS, "digits": DIGITS, "snapshot_times_s": list(PROFILE_TIMES)})
+    return file_sizes(out)
+
+
+def file_sizes(out):
+    """{path relative to OUT: bytes} of every file under OUT."""
     return {os.path.relpath(os.path.join(d, n), out): os.path.getsize(os.path.join(d, n))
             for d, _, names in os.walk(out) for n in names}
 
