@@ -13,7 +13,7 @@ import sys
 import numpy as np
 
 from .foamcase import execution_time, execution_times, read_internal_field, time_dirs
-from .foamdict import read_dict
+from .foamdict import read_dict, unquote
 from .froude import first_time, subcritical_after_arrival
 from .outputs import END_TOLERANCE_S, STAGE_TIMES, interpolated as at, read_rows
 from .paper import D_P, DRY_SERIES, G, PAPER_NAME
@@ -34,6 +34,7 @@ class Scene:
         self.exists = os.path.isdir(self.dir)
         self.failed = os.path.isfile(os.path.join(self.dir, ".failed"))
         self.tier = self.content = None
+        self.tier_set = ""  # the suite's --set entries for this run (system/tier)
         self.dem = self.liquid = self._exchange = self.summary = None
         self.deposit = self.velocity = self.profiles = None
         self.width = self.H = self.L = None
@@ -43,6 +44,7 @@ class Scene:
         if os.path.isfile(tier_file):
             rec = read_dict(tier_file)
             self.tier, self.content = rec.get("tier"), rec.get("content")
+            self.tier_set = unquote(rec.get("set", ""))
         sp = read_dict(os.path.join(self.dir, "constant", "sceneProperties"))
         self.content = self.content or sp.get("content")
         self.L, self.H, self.width = (float(sp["sample"][k]) for k in ("length", "height", "width"))
@@ -74,6 +76,23 @@ class Scene:
             if rows:
                 return rows[-1]["time_s"]
         return None
+
+
+def convergence_error(row, partner):
+    """partner - row for every number both have: the scalars, the numbers of a dict one level down
+    (per time, per quantile) and lists of numbers of equal length; counts (int) are not errors."""
+    err = {}
+    for k, v in row.items():
+        p = partner.get(k)
+        if isinstance(v, dict) and isinstance(p, dict):
+            err[k] = {q: p[q] - x for q, x in v.items()
+                      if isinstance(x, float) and isinstance(p.get(q), float)}
+        elif isinstance(v, float) and isinstance(p, float):
+            err[k] = p - v
+        elif (isinstance(v, list) and isinstance(p, list) and len(v) == len(p)
+              and all(isinstance(x, (int, float)) for x in v + p)):
+            err[k] = [b - a for a, b in zip(v, p)]
+    return err
 
 
 def first_finished(works, name):

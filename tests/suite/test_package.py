@@ -41,7 +41,11 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      1 s with their values (7 digits), the snapshots nearest 0.63 and 0.75 s (of 0, 0.62, 0.76,
      0.9 s) with at most two grains per 0.024 m bin and the same granular surface as the full
      snapshot of 3 000 random grains, the deposit whole, not the mesh, and record.json; Scene
-     reads it as a finished truth-tier scene; an unfinished case is refused and nothing written.
+     reads it as a finished truth-tier scene with the suite's --set entries; an unfinished case is
+     refused and nothing written;
+ 10. observables.convergence_error (a partner's value minus the run's): scalars, the floats of a
+     dict one level down (a drift's median and quantiles, not its bin count), lists of numbers of
+     equal length; a series of dicts, None and unequal lists give nothing.
 """
 import io
 import json
@@ -243,7 +247,8 @@ shutil.copytree(os.path.join(work, "deposit", "HB+P"), case)
 os.makedirs(os.path.join(case, "system"))
 os.makedirs(os.path.join(case, "postProcessing", "liquid"))
 os.makedirs(os.path.join(case, "constant", "polyMesh"))
-open(os.path.join(case, "system", "tier"), "w").write("tier truth;\ncontent mixture;\n")
+open(os.path.join(case, "system", "tier"), "w").write(
+    'tier truth;\ncontent mixture;\nset "couplingProperties.exchangeEvery=3";\n')
 with open(os.path.join(case, outputs.LIQUID_SERIES), "w") as f:  # every 0.5 ms over 1 s
     f.write("time_s,front_bed_m\n" + "".join(f"{k * 5e-4!r},{0.6 + k * 1e-4!r}\n" for k in range(2001))
             + "1.0005,0.8")  # a row cut short by a stopped run
@@ -272,7 +277,8 @@ check([t for t, _ in snaps] == [0.62, 0.76] and all(
       and len(observables.vtk_points(p)) <= 2 * 167 for _, p in snaps),
       f"record: the snapshots nearest 0.63 and 0.75 s, at most two grains a bin, the same surface ({snaps})")
 sc = observables.Scene(rec, "HB+P")
-check(sc.done and sc.tier == "truth" and sc.deposit == observables.Scene(os.path.dirname(case), "HB+P").deposit
+check(sc.done and sc.tier == "truth" and sc.tier_set == "couplingProperties.exchangeEvery=3"
+      and sc.deposit == observables.Scene(os.path.dirname(case), "HB+P").deposit
       and "constant/polyMesh" not in sizes and "record.json" in sizes,
       "record: a finished Scene of its tier, the deposit whole, no mesh, record.json")
 os.remove(os.path.join(case, ".done"))
@@ -283,6 +289,14 @@ except ValueError as e:
     refused = str(e)
 check("not a finished run" in refused and not os.path.exists(os.path.join(rec, "x")),
       f"record: an unfinished run is refused ({refused})")
+
+run = {"e": 1.0, "lambda_u": {"median": 1.25, "p10": 0.5, "bins": 40}, "w": [1.0, 2.0],
+       "basal": [{"excess_Pa": -1.0}], "none": None, "short": [1.0]}
+partner = {"e": 1.5, "lambda_u": {"median": 1.0, "p10": 0.75, "bins": 38}, "w": [1.5, 1.0],
+           "basal": [{"excess_Pa": -2.0}], "none": 2.0, "short": [1.0, 2.0]}
+err = observables.convergence_error(run, partner)
+check(err == {"e": 0.5, "lambda_u": {"median": -0.25, "p10": 0.25}, "w": [0.5, -1.0]},
+      f"convergence_error: partner minus run where both have numbers ({err})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

@@ -7,7 +7,9 @@ suite work directory, and summary.json with the paper's numbers beside ours.
 first where it finished. --partner holds the same scenes with one speed knob one step finer (for
 the truth tier: the exchange interval); each scene's observables then carry their convergence
 error, the partner's value minus this one's (summary.json: scenes.<scene>.observables and
-.convergence_error).
+.convergence_error). The drifts beside OUT are carried into summary.json: lambdas.json (mixflow
+mixture-lambdas) as `lambdas`, lambda_convergence/<scene>.json (their convergence error,
+results/mixtures/truth/lambda_pairs.sh) as `lambdas_convergence`.
 
 Rules (the same as mixflow report's, from mixflow.observables):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
@@ -19,6 +21,7 @@ Rules (the same as mixflow report's, from mixflow.observables):
 """
 
 import argparse
+import glob
 import json
 import math
 import os
@@ -26,7 +29,6 @@ import os
 import numpy as np
 
 from mixflow import observables as obs
-from mixflow.foamdict import read_dict, unquote
 from mixflow.commands import suite
 from mixflow.commands.tier_trade import observables
 from mixflow.froude import first_time, subcritical_from
@@ -50,21 +52,6 @@ def scene_observables(s):
     window = savage_window(s)
     row["savage_interval_s"] = list(window) if window else None
     return row
-
-
-def convergence_error(row, partner):
-    """partner - row for every observable both have (per time, and the scalars)."""
-    err = {}
-    for k, v in row.items():
-        p = partner.get(k)
-        if isinstance(v, dict) and isinstance(p, dict):
-            err[k] = {q: p[q] - x for q, x in v.items()
-                      if isinstance(x, float) and isinstance(p.get(q), float)}
-        elif isinstance(v, float) and isinstance(p, float):
-            err[k] = p - v
-        elif isinstance(v, list) and isinstance(p, list) and len(v) == len(p):
-            err[k] = [b - a for a, b in zip(v, p)]
-    return err
 
 
 def arrival_and_subcritical(s):
@@ -152,8 +139,8 @@ def main():
         partner = obs.first_finished(partners, n) if partners else None
         if partner is not None and partner.done:
             rec = summary["scenes"][p]
-            rec["partner_tier_set"] = unquote(read_dict(os.path.join(partner.dir, "system", "tier")).get("set", ""))
-            rec["convergence_error"] = convergence_error(rec["observables"], scene_observables(partner))
+            rec["partner_tier_set"] = partner.tier_set
+            rec["convergence_error"] = obs.convergence_error(rec["observables"], scene_observables(partner))
     ax[0].set(xlabel="t (s)", ylabel="front x (m)", title="liquid and granular fronts")
     ax[1].axhline(1, color="k", lw=0.8)
     ax[1].set(xlabel="t - t0 (s)", ylabel="Fr at x = 1.38 m", title="liquid Froude number", ylim=(0, 5))
@@ -171,6 +158,13 @@ def main():
         with open(lam) as f:
             drifts = json.load(f)
         summary["lambdas"], summary["lambdas_command"] = drifts["scenes"], drifts["command"]
+    # The drifts' convergence error, a pair of shorter runs per scene (lambda_pairs.sh there).
+    pairs = sorted(glob.glob(os.path.join(out, "lambda_convergence", "*.json")))
+    for path in pairs:
+        with open(path) as f:
+            pair = json.load(f)
+        for name, rec in pair["scenes"].items():
+            summary.setdefault("lambdas_convergence", {})[name] = dict(rec, command=pair["command"])
     write_observables_csv(os.path.join(out, "observables.csv"), summary["scenes"])
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(obs.clean(summary), f, indent=2)
