@@ -178,9 +178,14 @@ Schema makeSchema() {
           integerParam("settle.stiffenSteps", s.stiffenSteps, 1, 100,
                        "geometric steps from stiffenFrom to youngModulusFactor (ratio (factor / "
                        "stiffenFrom)^(1/steps)); each modulus at its own auto step, the last at "
-                       "timeStep"),
+                       "the settle's step (settle.rayleighFraction)"),
           scalarParam("settle.stiffenStepTime", s.stiffenStepTime, Range::positive(), "s",
                       "at each modulus of the stiffening, with the settling friction"),
+          scalarParam("settle.rayleighFraction", s.rayleighFraction, Range::openClosed(0, 1), "",
+                      "the settle's auto step (fill, stiffening, relaxation) as a fraction of T_R "
+                      "at each of its moduli, within the stability limit; a set timeStep is used "
+                      "as is. The collapse runs at rayleighFraction: one settled sample serves "
+                      "every collapse step"),
       });
 }
 
@@ -214,6 +219,7 @@ void readSettle(const Schema& sc, const Dictionary& d, SettleSpec& s) {
   s.stiffenFrom = sc.scalar(d, "settle.stiffenFrom");
   s.stiffenSteps = sc.integer(d, "settle.stiffenSteps");
   s.stiffenStepTime = sc.scalar(d, "settle.stiffenStepTime");
+  s.rayleighFraction = sc.scalar(d, "settle.rayleighFraction");
 }
 
 void readProcessors(const Schema& sc, const Dictionary& d, std::string& grid) {

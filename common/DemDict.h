@@ -47,6 +47,9 @@ struct SettleSpec {
   // sudden stiffening releases about (ratio - 1) times the elastic energy of the contacts.
   long stiffenSteps = 10;
   double stiffenStepTime = 0.01;
+  // The auto step of the whole settle (fill, stiffening, relaxation) as a fraction of T_R: the
+  // sample does not depend on the collapse's step, so one sample serves a DEM-step ladder.
+  double rayleighFraction = 0.1;
 };
 
 struct DemSpec {

@@ -71,17 +71,23 @@ Scene Scene::read(const std::string& caseDir) {
   return s;
 }
 
+Scene Scene::settledScene() const {
+  Scene full = *this;
+  full.dem.rayleighFraction = settle.rayleighFraction;
+  return full;
+}
+
 Scene Scene::settlingScene() const {
-  if (!stiffensSettled()) return *this;
-  Scene soft = *this;
+  Scene soft = settledScene();
+  if (!stiffensSettled()) return soft;
   soft.dem.youngModulusFactor = settle.stiffenFrom;
   soft.dem.timeStep = 0;
   return soft;
 }
 
 Scene Scene::stiffeningScene(long k) const {
-  if (k >= settle.stiffenSteps) return *this;
-  Scene step = *this;
+  Scene step = settledScene();
+  if (k >= settle.stiffenSteps) return step;
   const double x = static_cast<double>(k) / static_cast<double>(settle.stiffenSteps);
   step.dem.youngModulusFactor =
       settle.stiffenFrom * std::pow(dem.youngModulusFactor / settle.stiffenFrom, x);

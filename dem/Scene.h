@@ -55,11 +55,14 @@ struct Scene {
 
   // demDict settle.stiffenFrom > 0: the sample settles softer, then is stiffened.
   bool stiffensSettled() const { return settle.stiffenFrom > 0; }
-  // The scene the sample settles in: this one, or (stiffening) the same with youngModulusFactor
-  // settle.stiffenFrom and its auto step (the scene's own timeStep is for the full moduli).
+  // This scene at the settle's step (settle.rayleighFraction; a set timeStep as is): where the
+  // settle ends (the last stiffening step, the relaxation at the real friction).
+  Scene settledScene() const;
+  // The scene the sample settles in: settledScene(), or (stiffening) the same with
+  // youngModulusFactor settle.stiffenFrom and its auto step.
   Scene settlingScene() const;
   // Step k = 1 .. settle.stiffenSteps of the stiffening: youngModulusFactor stiffenFrom r^k with
-  // r = (factor / stiffenFrom)^(1/steps), at its auto step; the last is this scene itself.
+  // r = (factor / stiffenFrom)^(1/steps), at its auto step; the last is settledScene().
   Scene stiffeningScene(long k) const;
 };
 

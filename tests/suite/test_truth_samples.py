@@ -11,8 +11,11 @@ For each mixture of Table 1 (W&P, HB&P, B&P), exact checks:
   3. the sample holds what the tier promises: settled, at the paper's stiffness (settled.entries
      youngModulusFactor 1), a sample solid fraction within the packing control's 0.003 of the
      case's sample.solidFraction;
-  4. a copy whose settling inputs differ (--set demDict.settle.friction=0.3) is refused with the
-     entry named, so the suite settles afresh instead.
+  4. a copy whose settling inputs differ (--set demDict.settle.friction=0.3, or the settle's own
+     step, demDict.settle.rayleighFraction=0.2) is refused with the entry named, so the suite
+     settles afresh instead;
+  5. a copy whose collapse runs at another DEM step (demDict.rayleighFraction=0.2) accepts it: the
+     settle keeps its own step (settle.rayleighFraction), so one sample serves a DEM-step ladder.
 """
 import os
 import shutil
@@ -61,12 +64,17 @@ for scene in ("W+P", "HB+P", "B+P"):
     check(state["converged"] == "yes" and entry(files[2], "youngModulusFactor") == "1"
           and abs(phi - target) <= TOLERANCE,
           f"{scene}: settled at E x 1, sample fraction {phi:.4f} within {TOLERANCE} of {target}")
-    t2 = suite.Tier("truth")
-    t2.set_entries(["demDict.settle.friction=0.3"])
-    q = suite.plan_scene(scene, os.path.join(work, "differs"), t2, 1)
-    suite.make_copy(q["scene"], q["run_dir"], t2, q["texts"], q["records"], q["content"])
-    fits, why = suite.shipped_sample_fits(q["run_dir"], sample)
-    check(not fits and "friction" in why, f"{scene}: a copy with another settle.friction refuses it ({why})")
+    for n, (entry_set, accepted, named) in enumerate((
+            ("demDict.settle.friction=0.3", False, "friction"),
+            ("demDict.settle.rayleighFraction=0.2", False, "timestep"),
+            ("demDict.rayleighFraction=0.2", True, ""))):
+        t2 = suite.Tier("truth")
+        t2.set_entries([entry_set])
+        q = suite.plan_scene(scene, os.path.join(work, f"set{n}"), t2, 1)
+        suite.make_copy(q["scene"], q["run_dir"], t2, q["texts"], q["records"], q["content"])
+        fits, why = suite.shipped_sample_fits(q["run_dir"], sample)
+        check(fits == accepted and named in why,
+              f"{scene}: a copy with {entry_set} {'accepts' if accepted else 'refuses'} it ({why})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)
