@@ -6,7 +6,6 @@ entry of results/yield_stress/summary.json when that file exists.
 
 usage: mixflow mixture-lambdas --work runs/reference [--scenes W+P,HB+P,B+P]
                                                    [--out results/yield_stress/lambdas.json]
-                                                   [--partner-work runs/finer]
 
 For each scene WORK/<scene> (a finished suite run): system/extractDict is written (grid x 0 to 3 m
 and y 0 to 0.72 m in the widest bins that are not narrower than the run's fluid cell, cfdDict
@@ -26,9 +25,8 @@ postProcessing/mixture/mixture.h5:
     p_f_excess and p_f_hydrostatic), per window up to 1 s (basal_pore_pressure).
 load() (the file's arrays) and wls_slope() are shared with mixflow calibrate-drifts, bin_counts()
 and run_extract() with mixflow calibrate.
-With --partner-work, each scene is also extracted from that directory (the same scene one
-exchange step finer) and OUT holds per scene {run, partner, convergence_error: partner - run};
-summary.json beside OUT is then left alone.
+Each scene's entry also names the run's --set entries (tier_set); with_partner() pairs two runs'
+drifts (mixflow mixture-results, lambda_convergence/).
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
 
@@ -181,14 +179,13 @@ def basal_pore_pressure(d, t_max=1.0):
     return rows
 
 
-def with_partner(run, partner, run_scene, partner_scene):
-    """The drifts of a run and of its partner (the same scene one exchange step finer) and their
-    convergence error, partner minus run, for each median, quantile and slope (the basal pore
-    pressure's windows are left out: they are a series, not a drift)."""
+def with_partner(run, partner):
+    """The drifts of a run and of its partner (the same scene one exchange step finer), each as
+    summarise() gives them, and their convergence error, partner minus run, for each median,
+    quantile and slope (the basal pore pressure's windows are left out: a series, not a drift)."""
     drifts = {k: v for k, v in run.items() if k != "basal_pore_pressure"}
     other = {k: v for k, v in partner.items() if k != "basal_pore_pressure"}
-    return {"run": run, "partner": partner, "run_set": run_scene.tier_set,
-            "partner_set": partner_scene.tier_set,
+    return {"run": run, "partner": partner,
             "convergence_error": obs.convergence_error(drifts, other)}
 
 
@@ -198,34 +195,27 @@ def main():
     ap.add_argument("--work", required=True)
     ap.add_argument("--scenes", default="W+P,HB+P,B+P")
     ap.add_argument("--out", default=os.path.join(ROOT, "results", "yield_stress", "lambdas.json"))
-    ap.add_argument("--partner-work", help="finished runs of the same scenes one exchange step "
-                    "finer: each scene gets its partner's drifts and the convergence error")
     a = ap.parse_args()
     build = os.environ.get("MIXFLOW_BUILD", os.path.join(ROOT, "build"))
     res = {"command": " ".join(["mixflow mixture-lambdas"] + sys.argv[1:]),
            "flowing_rule": "lambda valid, alpha_s >= 0.1, |u_s| >= 0.05 m/s",
            "grid": "x 0-3 m, y 0-0.72 m in bins no narrower than a fluid cell, windows 0.1 s",
            "scenes": {}}
-    works = [os.path.abspath(a.work)] + ([os.path.abspath(a.partner_work)] if a.partner_work
-                                         else [])
     for scene in a.scenes.split(","):
-        runs = [obs.Scene(w, scene) for w in works]
-        sums = []
-        for r in runs:
-            if not r.done:
-                sys.exit(f"mixture-lambdas: {r.dir} is not a finished run (no .done); run or "
-                         "resume it with mixflow suite first")
-            extract(r.dir, build)
-            sums.append(summarise(os.path.join(r.dir, "postProcessing", "mixture", "mixture.h5")))
-        res["scenes"][LABEL.get(scene, scene)] = (with_partner(*sums, *runs) if a.partner_work
-                                                  else sums[0])
+        r = obs.Scene(os.path.abspath(a.work), scene)
+        if not r.done:
+            sys.exit(f"mixture-lambdas: {r.dir} is not a finished run (no .done); run or resume "
+                     "it with mixflow suite first")
+        extract(r.dir, build)
+        res["scenes"][LABEL.get(scene, scene)] = dict(
+            summarise(os.path.join(r.dir, "postProcessing", "mixture", "mixture.h5")),
+            tier_set=r.tier_set)
         print(scene, json.dumps(res["scenes"][LABEL.get(scene, scene)]), flush=True)
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
         json.dump(res, f, indent=1, sort_keys=True)
-    # A partner comparison stands in its own file; summary.json beside it takes a run's drifts.
     summary = os.path.join(os.path.dirname(os.path.abspath(a.out)), "summary.json")
-    if os.path.exists(summary) and not a.partner_work:
+    if os.path.exists(summary):
         with open(summary) as f:
             s = json.load(f)
         s["lambdas"] = res["scenes"]

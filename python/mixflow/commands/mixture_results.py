@@ -8,8 +8,9 @@ first where it finished. --partner holds the same scenes with one speed knob one
 the truth tier: the exchange interval); each scene's observables then carry their convergence
 error, the partner's value minus this one's (summary.json: scenes.<scene>.observables and
 .convergence_error). The drifts beside OUT are carried into summary.json: lambdas.json (mixflow
-mixture-lambdas) as `lambdas`, lambda_convergence/<scene>.json (their convergence error,
-results/mixtures/truth/lambda_pairs.sh) as `lambdas_convergence`.
+mixture-lambdas) as `lambdas`, and lambda_convergence/<scene>-every<N>.json (the drifts of a
+shorter run and of its partner one exchange step finer, results/mixtures/truth/lambda_pairs.sh)
+as `lambdas_convergence`, with the convergence error once both are there.
 
 Rules (the same as mixflow report's, from mixflow.observables):
   - subcritical after arrival: t0 = the liquid front (bed row, alpha >= 0.5) reaching x = 1.38 m;
@@ -29,6 +30,7 @@ import os
 import numpy as np
 
 from mixflow import observables as obs
+from mixflow.commands import mixture_lambdas as ml
 from mixflow.commands import suite
 from mixflow.commands.tier_trade import observables
 from mixflow.froude import first_time, subcritical_from
@@ -158,13 +160,22 @@ def main():
         with open(lam) as f:
             drifts = json.load(f)
         summary["lambdas"], summary["lambdas_command"] = drifts["scenes"], drifts["command"]
-    # The drifts' convergence error, a pair of shorter runs per scene (lambda_pairs.sh there).
-    pairs = sorted(glob.glob(os.path.join(out, "lambda_convergence", "*.json")))
-    for path in pairs:
+    # The drifts' convergence error: per scene a run and its partner one exchange step finer,
+    # each's drifts in lambda_convergence/<scene>-every<N>.json (lambda_pairs.sh there).
+    pairs = {}
+    for path in glob.glob(os.path.join(out, "lambda_convergence", "*-every*.json")):
+        every = int(os.path.splitext(path)[0].rsplit("-every", 1)[1])
         with open(path) as f:
-            pair = json.load(f)
-        for name, rec in pair["scenes"].items():
-            summary.setdefault("lambdas_convergence", {})[name] = dict(rec, command=pair["command"])
+            drifts = json.load(f)
+        for name, rec in drifts["scenes"].items():
+            pairs.setdefault(name, {})[every] = dict(rec, command=drifts["command"])
+    for name, runs in sorted(pairs.items()):
+        coarse, fine = max(runs), min(runs)
+        entry = {f"every{n}": runs[n] for n in sorted(runs)}
+        if fine < coarse:
+            entry["convergence_error"] = ml.with_partner(runs[coarse], runs[fine])["convergence_error"]
+            entry["convergence_error_of"] = f"every{fine} minus every{coarse}"
+        summary.setdefault("lambdas_convergence", {})[name] = entry
     write_observables_csv(os.path.join(out, "observables.csv"), summary["scenes"])
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(obs.clean(summary), f, indent=2)
