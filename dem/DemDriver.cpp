@@ -284,10 +284,8 @@ double DemDriver::relaxAtRealFriction() {
   // Back to the real friction, and a short relaxation so the contacts carry it.
   lig_->commands(materialCommands(s.particles, s.dem.youngModulusFactor, s.particles.friction,
                                   s.particles.rollingFriction));
-  // At the settle's own step, which the settle ends at: the sample is the same whatever the
-  // collapse's step.
+  // At the step the settle ended at (its own, settledScene), whatever the collapse's step.
   const double dt = s.settledScene().timeStepUsed();
-  lig_->command("timestep " + fmt(dt));  // as the settle's commands give it
   lig_->invalidateSetup();
   const long nRelax = std::lround(s.settle.relaxTime / dt);
   lig_->run(nRelax);
@@ -340,7 +338,7 @@ SettleReport DemDriver::measureSample(double settleTime, bool converged) {
 CollapseReport DemDriver::collapse(const SettleReport& settled) {
   settled_ = settled;
   // The collapse's step, where the settle ran at another (settle.rayleighFraction).
-  if (scene_.settledScene().timeStepUsed() != dt_) lig_->command("timestep " + fmt(dt_));
+  if (scene_.settledScene().timeStepUsed() != dt_) lig_->command(timestepCommand(dt_));
   // t = 0 at the gate opening is step 0, so periodic dumps fall on multiples of writeInterval.
   lig_->command("reset_timestep 0");
   step0_ = lig_->step();

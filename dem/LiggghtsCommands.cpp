@@ -70,6 +70,8 @@ std::vector<std::string> contactCommands(const ParticleMaterial& p, double young
   return c;
 }
 
+std::string timestepCommand(double timeStep) { return "timestep " + fmt(timeStep); }
+
 std::vector<std::string> stiffenCommands(const Scene& s, double timeStep) {
   std::vector<std::string> c;
   const ParticleMaterial& p = s.particles;
@@ -78,7 +80,7 @@ std::vector<std::string> stiffenCommands(const Scene& s, double timeStep) {
   for (auto& m :
        materialCommands(p, s.dem.youngModulusFactor, s.settle.friction, s.settle.rollingFriction))
     c.push_back(m);
-  c.push_back("timestep " + fmt(timeStep));
+  c.push_back(timestepCommand(timeStep));
   return c;
 }
 
@@ -110,7 +112,7 @@ std::vector<std::string> interactionCommands(const Scene& s, double timeStep, bo
     c.push_back(line);
   const ParticleMaterial& p = s.particles;
   const bool lf = s.dem.limitForce;
-  c.push_back("timestep " + fmt(timeStep));
+  c.push_back(timestepCommand(timeStep));
   c.push_back("fix gravi all gravity 9.81 vector 0.0 -1.0 0.0");
   c.push_back(wallCommand("wBottom", p, lf, "yplane", 0.0, wallForceOption(s)));
   c.push_back(wallCommand("wBack", p, lf, "xplane", 0.0, wallForceOption(s)));

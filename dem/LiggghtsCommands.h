@@ -40,6 +40,9 @@ std::vector<std::string> contactCommands(const ParticleMaterial& p, double young
 std::string wallCommand(const std::string& id, const ParticleMaterial& p, bool limitForce,
                         const std::string& plane, double position, const std::string& options = "");
 
+// The DEM step as every command here gives it (the digits LIGGGHTS runs at).
+std::string timestepCommand(double timeStep);
+
 // Raises a sample settled softer (demDict settle.stiffenFrom) to the scene's moduli and DEM step,
 // keeping the settling friction and no rolling resistance; takes effect at the next run.
 std::vector<std::string> stiffenCommands(const Scene& s, double timeStep);

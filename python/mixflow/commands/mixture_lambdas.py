@@ -25,8 +25,8 @@ postProcessing/mixture/mixture.h5:
     p_f_excess and p_f_hydrostatic), per window up to 1 s (basal_pore_pressure).
 load() (the file's arrays) and wls_slope() are shared with mixflow calibrate-drifts, bin_counts()
 and run_extract() with mixflow calibrate.
-Each scene's entry also names the run's --set entries (tier_set); with_partner() pairs two runs'
-drifts (mixflow mixture-results, lambda_convergence/).
+Each scene's entry also names the run's --set entries (tier_set); drifts_error() compares two
+runs' drifts (mixflow mixture-results, lambda_convergence/).
 Needs numpy and h5py (Debian's python3-numpy, python3-h5py; hence /usr/bin/python3).
 """
 
@@ -179,14 +179,13 @@ def basal_pore_pressure(d, t_max=1.0):
     return rows
 
 
-def with_partner(run, partner):
-    """The drifts of a run and of its partner (the same scene one exchange step finer), each as
-    summarise() gives them, and their convergence error, partner minus run, for each median,
-    quantile and slope (the basal pore pressure's windows are left out: a series, not a drift)."""
-    drifts = {k: v for k, v in run.items() if k != "basal_pore_pressure"}
-    other = {k: v for k, v in partner.items() if k != "basal_pore_pressure"}
-    return {"run": run, "partner": partner,
-            "convergence_error": obs.convergence_error(drifts, other)}
+def drifts_error(run, partner):
+    """The convergence error of a run's drifts against its partner's (the same scene one exchange
+    step finer), each as summarise() gives them: partner minus run for each median, quantile and
+    slope (the basal pore pressure's windows are left out: a series, not a drift)."""
+    def drifts(d):
+        return {k: v for k, v in d.items() if k != "basal_pore_pressure"}
+    return obs.convergence_error(drifts(run), drifts(partner))
 
 
 def main():

@@ -173,7 +173,7 @@ def main():
         coarse, fine = max(runs), min(runs)
         entry = {f"every{n}": runs[n] for n in sorted(runs)}
         if fine < coarse:
-            entry["convergence_error"] = ml.with_partner(runs[coarse], runs[fine])["convergence_error"]
+            entry["convergence_error"] = ml.drifts_error(runs[coarse], runs[fine])
             entry["convergence_error_of"] = f"every{fine} minus every{coarse}"
         summary.setdefault("lambdas_convergence", {})[name] = entry
     write_observables_csv(os.path.join(out, "observables.csv"), summary["scenes"])
