@@ -45,7 +45,9 @@ Checks, each exact (the values are chosen so that the arithmetic is exact in bin
      refused and nothing written;
  10. observables.convergence_error (a partner's value minus the run's): scalars, the floats of a
      dict one level down (a drift's median and quantiles, not its bin count), lists of numbers of
-     equal length; a series of dicts, None and unequal lists give nothing.
+     equal length; a series of dicts, None and unequal lists give nothing;
+ 11. the report's rows with a partner: a row naming B&P gets the partner's value and the
+     difference; HB&P's rows (whose name holds "B&P") and rows naming no partner keep none.
 """
 import io
 import json
@@ -297,6 +299,15 @@ partner = {"e": 1.5, "lambda_u": {"median": 1.0, "p10": 0.75, "bins": 38}, "w": 
 err = observables.convergence_error(run, partner)
 check(err == {"e": 0.5, "lambda_u": {"median": -0.25, "p10": 0.25}, "w": [0.5, -1.0]},
       f"convergence_error: partner minus run where both have numbers ({err})")
+
+from mixflow.commands import report  # noqa: E402
+rows = [report.row(q, 1.0, 2.0, "truth", True, note) for q, note in (
+    ("B&P: front (m)", ""), ("HB&P: front (m)", ""), ("front order", "HB&P 0.9 m, P 2.0 m"),
+    ("Savage ordering", "B&P 0.001, HB&P 0.002"))]
+finer = [dict(r, ours=2.5) for r in rows]
+got = {r["quantity"]: r.get("convergence_error") for r in report.with_partner(rows, finer, ["B&P"])}
+check(got == {"B&P: front (m)": 0.5, "HB&P: front (m)": None, "front order": None,
+              "Savage ordering": 0.5}, f"report: rows naming B&P get its partner, HB&P's not ({got})")
 
 print(f"{len(failures)} failed" if failures else "all checks passed")
 sys.exit(1 if failures else 0)

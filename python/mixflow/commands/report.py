@@ -23,6 +23,7 @@ import csv
 import functools
 import json
 import os
+import re
 import sys
 import traceback
 
@@ -364,10 +365,11 @@ def with_partner(rows, partner_rows, partner_names):
     """Each row a partner scene enters gets the partner's value ("finer") and, for numbers, their
     difference ("convergence_error"); where the two verdicts differ the row has none."""
     by_q = {r["quantity"]: r for r in partner_rows}
+    # a scene's name as a word: "B&P" does not name HB&P's rows
+    named = re.compile("|".join(rf"(?<![\w&]){re.escape(n)}" for n in partner_names) or "$^")
     for r in rows:
         p = by_q.get(r["quantity"])
-        if p is None or not any(n in r["quantity"] or n in str(r["note"])
-                                          for n in partner_names):
+        if p is None or not named.search(f"{r['quantity']} {r['note']}"):
             continue
         r["finer"] = p["ours"]
         if isinstance(r["ours"], (int, float)) and isinstance(p["ours"], (int, float)):
