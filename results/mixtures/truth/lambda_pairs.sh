@@ -7,9 +7,9 @@
 #
 # The drifts need every field write of a run, which a checkpoint does not keep, so each run is
 # sized to finish inside a session: measured 0.9 h (W&P every 27), 0.8 h (B&P every 27) and 1.0 h
-# (W&P every 9) of wall time on one core; HB&P every 9 about 1 h, the other finer ones 1.2-2 h. A stopped run resumes where it stopped when the
-# script is rerun on the same machine; a run whose JSON is committed is skipped afterwards, so a
-# pair may span sessions and machines.
+# (W&P every 9) of wall time on one core; HB&P every 9 about 1 h, the other finer ones 1.2-2 h.
+# A stopped run resumes where it stopped when the script is rerun on the same machine; a run
+# whose JSON is committed is skipped afterwards, so a pair may span sessions and machines.
 # Usage: results/mixtures/truth/lambda_pairs.sh [RUNS] (default runs); SCENES="W+P" for some.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../../.." && pwd)
